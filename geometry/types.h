@@ -1,0 +1,104 @@
+// Analytic geometry as plain data: what the kernel stores per vertex, edge and face.
+//
+// The kernel depends on these types only; how they are evaluated, intersected and
+// measured lives in the rest of geometry/ (surface.h, curve.h, ...), so the kernel
+// does not depend on how geometry is computed.
+//
+// Parametrisations (also in spec/geometry.md). Every frame is right-handed:
+// y = z × x, with x and z unit and orthogonal.
+//   Plane     P(s,t)   = o + s·x + t·y                                 normal  z
+//   Cylinder  P(θ,h)   = o + r(cosθ·x + sinθ·y) + h·z                  normal  radial, outward
+//   Cone      P(θ,t)   = o + (r + t·sinα)(cosθ·x + sinθ·y) + t·cosα·z   normal  outward
+//             (o is on the axis where the radius is r; α the half-angle, 0 < |α| < π/2;
+//              the apex is at t = -r/sinα)
+//   Sphere    P(θ,φ)   = o + r(cosφ(cosθ·x + sinθ·y) + sinφ·z)          normal  outward
+//   Torus     P(θ,φ)   = o + (R + r·cosφ)(cosθ·x + sinθ·y) + r·sinφ·z   normal  outward
+//   Line      C(t)     = o + t·d                    (d unit; t is arc length)
+//   Circle    C(t)     = o + r(cos t·x + sin t·y)   (axis z)
+//   Ellipse   C(t)     = o + a·cos t·x + b·sin t·y  (axis z; a along x, b along y)
+//   Polyline  C(t)     piecewise linear through its points, t = arc length from the first
+//             point; used for intersection curves without a closed form, with the chordal
+//             accuracy recorded in `chordal_error`.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <variant>
+#include <vector>
+
+namespace kintsugi::geo {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+// A right-handed orthonormal frame. `z` is the axis of revolution for the
+// rotational types and the normal for a plane.
+struct Frame {
+  Vec3 origin = Vec3::Zero();
+  Vec3 x = Vec3::UnitX();
+  Vec3 z = Vec3::UnitZ();
+  Vec3 y() const { return z.cross(x); }
+  bool operator==(const Frame&) const = default;
+};
+
+struct Plane {
+  Frame frame;
+  bool operator==(const Plane&) const = default;
+};
+struct Cylinder {
+  Frame frame;
+  double radius = 1.0;
+  bool operator==(const Cylinder&) const = default;
+};
+struct Cone {
+  Frame frame;
+  double radius = 1.0;      // radius at frame.origin
+  double half_angle = 0.5;  // radians, signed: positive opens towards +z
+  bool operator==(const Cone&) const = default;
+};
+struct Sphere {
+  Frame frame;
+  double radius = 1.0;
+  bool operator==(const Sphere&) const = default;
+};
+struct Torus {
+  Frame frame;
+  double major_radius = 2.0;
+  double minor_radius = 1.0;
+  bool operator==(const Torus&) const = default;
+};
+
+// std::monostate: no surface attached yet (e.g. a face made by an operator inside a
+// repair, before the repair assigns its geometry).
+using Surface = std::variant<std::monostate, Plane, Cylinder, Cone, Sphere, Torus>;
+
+struct Line {
+  Vec3 origin = Vec3::Zero();
+  Vec3 direction = Vec3::UnitX();
+  bool operator==(const Line&) const = default;
+};
+struct Circle {
+  Frame frame;
+  double radius = 1.0;
+  bool operator==(const Circle&) const = default;
+};
+struct Ellipse {
+  Frame frame;
+  double major_radius = 2.0;  // along frame.x
+  double minor_radius = 1.0;  // along frame.y
+  bool operator==(const Ellipse&) const = default;
+};
+struct Polyline {
+  std::vector<Vec3> points;
+  double chordal_error = 0.0;  // largest distance from the true curve, when known
+  bool operator==(const Polyline&) const = default;
+};
+
+// std::monostate: no curve attached yet.
+using Curve = std::variant<std::monostate, Line, Circle, Ellipse, Polyline>;
+
+// Names used in files, reports and messages.
+const char* surface_type_name(const Surface& s);
+const char* curve_type_name(const Curve& c);
+
+}  // namespace kintsugi::geo
