@@ -1,0 +1,57 @@
+// The journal: every operator applied to a body, with its arguments and results, so a
+// transaction can be rolled back exactly by applying the inverses in reverse order
+// (spec/journal.md). Repairs use it to undo a change whose geometry turns out not to
+// be realisable, and reports use it to say which operators a repair used.
+#pragma once
+
+#include "geometry/types.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kintsugi {
+
+enum class Op : std::uint8_t {
+  mvfs, kvfs, mev, kev, mef, kef, kemr, mekr, kfmrh, mfkrh, semv, jekv, kfmb, mfkb,
+  set_point, set_curve, set_surface,
+};
+const char* op_name(Op op);
+
+// One journaled operator. `h` holds handle indices whose meaning depends on the
+// operator (documented at each operator in kernel/euler.cpp, where entries are made
+// and undone). Geometry that an operator destroys or overwrites is saved in the
+// journal's side tables and referred to by index, so the entry stays small.
+struct JournalEntry {
+  static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  Op op;
+  std::uint8_t flags = 0;
+  std::array<std::uint32_t, 7> h{kNone, kNone, kNone, kNone, kNone, kNone, kNone};
+  std::uint32_t saved = kNone;  // index into the side table for this op's geometry
+  std::uint32_t extra = kNone;  // index into `lists` (e.g. rings moved by kef)
+};
+
+class Journal {
+ public:
+  const std::vector<JournalEntry>& entries() const { return entries_; }
+  std::size_t size() const { return entries_.size(); }
+  bool empty() const { return entries_.empty(); }
+  // Operator names from entry `from` on, in order: what a repair did.
+  std::vector<std::string> op_names(std::size_t from = 0) const;
+
+ private:
+  friend class EulerImpl;
+  friend class Body;
+  friend class Transaction;
+  void clear();
+
+  std::vector<JournalEntry> entries_;
+  std::vector<geo::Vec3> points_;
+  std::vector<geo::Curve> curves_;
+  std::vector<geo::Surface> surfaces_;
+  std::vector<std::uint8_t> senses_;
+  std::vector<std::vector<std::uint32_t>> lists_;
+};
+
+}  // namespace kintsugi
