@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // Vec3::cross, used by Frame::y()
 
 #include <variant>
 #include <vector>

@@ -1,0 +1,260 @@
+#include "geometry/curve.h"
+
+#include "geometry/frame.h"
+#include "geometry/overload.h"
+#include "geometry/quadrature.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace kintsugi::geo {
+
+namespace {
+
+[[noreturn]] void no_geometry() { throw std::invalid_argument("curve has no geometry (monostate)"); }
+
+// Cumulative arc length at each polyline point.
+std::vector<double> cumulative(const Polyline& p) {
+  std::vector<double> s(p.points.size(), 0.0);
+  for (std::size_t i = 1; i < p.points.size(); ++i) s[i] = s[i - 1] + (p.points[i] - p.points[i - 1]).norm();
+  return s;
+}
+
+// Index of the segment [i, i+1] holding arc length t (clamped to the polyline).
+std::size_t segment_at(const std::vector<double>& s, double t) {
+  if (s.size() < 2) return 0;
+  auto it = std::upper_bound(s.begin(), s.end(), t);
+  std::size_t i = it == s.begin() ? 0 : static_cast<std::size_t>(it - s.begin()) - 1;
+  return std::min(i, s.size() - 2);
+}
+
+Vec3 polyline_at(const Polyline& p, double t) {
+  if (p.points.empty()) throw std::invalid_argument("polyline has no points");
+  if (p.points.size() == 1) return p.points[0];
+  const std::vector<double> s = cumulative(p);
+  t = std::clamp(t, 0.0, s.back());
+  const std::size_t i = segment_at(s, t);
+  const double len = s[i + 1] - s[i];
+  const double w = len > 0 ? (t - s[i]) / len : 0.0;
+  return (1 - w) * p.points[i] + w * p.points[i + 1];
+}
+
+Vec3 ellipse_at(const Ellipse& e, double t) {
+  return e.frame.origin + e.major_radius * std::cos(t) * e.frame.x + e.minor_radius * std::sin(t) * e.frame.y();
+}
+
+// Speed |C'(t)| of an ellipse.
+double ellipse_speed(const Ellipse& e, double t) {
+  return std::hypot(e.major_radius * std::sin(t), e.minor_radius * std::cos(t));
+}
+
+// Nearest parameter on an ellipse to the in-plane point (x, y): coarse scan, then
+// safeguarded Newton on D'(t) = (E(t) - q)·E'(t) inside the best scan interval.
+double ellipse_parameter(const Ellipse& e, double x, double y) {
+  const double a = e.major_radius, b = e.minor_radius;
+  auto d2 = [&](double t) {
+    const double dx = a * std::cos(t) - x, dy = b * std::sin(t) - y;
+    return dx * dx + dy * dy;
+  };
+  constexpr int kScan = 64;
+  int best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < kScan; ++i) {
+    const double d = d2(-kPi + kTwoPi * i / kScan);
+    if (d < best_d) best_d = d, best = i;
+  }
+  const double h = kTwoPi / kScan;
+  double lo = -kPi + h * (best - 1), hi = -kPi + h * (best + 1);
+  auto g = [&](double t) {  // D'(t)
+    return (a * std::cos(t) - x) * (-a * std::sin(t)) + (b * std::sin(t) - y) * (b * std::cos(t));
+  };
+  double t = -kPi + h * best;
+  // The minimum of D in [lo, hi] has g(lo) <= 0 <= g(hi) unless it is at an end.
+  if (!(g(lo) <= 0 && g(hi) >= 0)) return wrap_angle(t);
+  for (int it = 0; it < 100; ++it) {
+    const double gt = g(t);
+    if (gt < 0) lo = t; else hi = t;
+    const double gp = (a * a - b * b) * -std::cos(2 * t) + a * x * std::cos(t) + b * y * std::sin(t);  // D''
+    double next = gp > 0 ? t - gt / gp : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - t) < 1e-15) { t = next; break; }
+    t = next;
+  }
+  return wrap_angle(t);
+}
+
+}  // namespace
+
+Vec3 evaluate(const Curve& c, double t) {
+  return std::visit(detail::Overload{[&](const std::monostate&) -> Vec3 { no_geometry(); },
+                                     [&](const Line& l) -> Vec3 { return l.origin + t * l.direction; },
+                                     [&](const Circle& k) -> Vec3 {
+                                       return k.frame.origin + k.radius * radial(k.frame, t);
+                                     },
+                                     [&](const Ellipse& e) { return ellipse_at(e, t); },
+                                     [&](const Polyline& p) { return polyline_at(p, t); }},
+                    c);
+}
+
+Vec3 tangent(const Curve& c, double t) {
+  return std::visit(detail::Overload{
+                        [&](const std::monostate&) -> Vec3 { no_geometry(); },
+                        [&](const Line& l) -> Vec3 { return l.direction.normalized(); },
+                        [&](const Circle& k) -> Vec3 { return radial(k.frame, t + kPi / 2); },
+                        [&](const Ellipse& e) -> Vec3 {
+                          return (-e.major_radius * std::sin(t) * e.frame.x + e.minor_radius * std::cos(t) * e.frame.y())
+                              .normalized();
+                        },
+                        [&](const Polyline& p) -> Vec3 {
+                          if (p.points.size() < 2) return Vec3::UnitX();
+                          const std::vector<double> s = cumulative(p);
+                          std::size_t i = segment_at(s, std::clamp(t, 0.0, s.back()));
+                          // Skip zero-length segments so the tangent is never NaN.
+                          for (std::size_t j = i; j + 1 < p.points.size(); ++j)
+                            if ((p.points[j + 1] - p.points[j]).norm() > 0) return (p.points[j + 1] - p.points[j]).normalized();
+                          for (std::size_t j = i; j-- > 0;)
+                            if ((p.points[j + 1] - p.points[j]).norm() > 0) return (p.points[j + 1] - p.points[j]).normalized();
+                          return Vec3::UnitX();
+                        }},
+                    c);
+}
+
+CurvePoint closest_point(const Curve& c, const Vec3& p) {
+  CurvePoint out;
+  std::visit(detail::Overload{
+                 [&](const std::monostate&) { no_geometry(); },
+                 [&](const Line& l) {
+                   const Vec3 d = l.direction.normalized();
+                   out.t = (p - l.origin).dot(d);
+                   out.point = l.origin + out.t * d;
+                 },
+                 [&](const Circle& k) {
+                   const Vec3 q = to_local(k.frame, p);
+                   out.t = std::hypot(q.x(), q.y()) > 1e-300 ? std::atan2(q.y(), q.x()) : 0.0;
+                   out.point = k.frame.origin + k.radius * radial(k.frame, out.t);
+                 },
+                 [&](const Ellipse& e) {
+                   const Vec3 q = to_local(e.frame, p);
+                   out.t = ellipse_parameter(e, q.x(), q.y());
+                   out.point = ellipse_at(e, out.t);
+                 },
+                 [&](const Polyline& pl) {
+                   if (pl.points.empty()) throw std::invalid_argument("polyline has no points");
+                   double best = std::numeric_limits<double>::infinity(), s = 0.0;
+                   out.point = pl.points[0];
+                   for (std::size_t i = 0; i + 1 < pl.points.size(); ++i) {
+                     const Vec3 a = pl.points[i], ab = pl.points[i + 1] - a;
+                     const double len2 = ab.squaredNorm();
+                     const double w = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+                     const Vec3 x = a + w * ab;
+                     const double d = (p - x).squaredNorm();
+                     if (d < best) best = d, out.point = x, out.t = s + w * std::sqrt(len2);
+                     s += std::sqrt(len2);
+                   }
+                 }},
+             c);
+  out.distance = (p - out.point).norm();
+  return out;
+}
+
+double parameter(const Curve& c, const Vec3& p) { return closest_point(c, p).t; }
+
+bool is_closed(const Curve& c) {
+  if (std::holds_alternative<Circle>(c) || std::holds_alternative<Ellipse>(c)) return true;
+  if (const auto* p = std::get_if<Polyline>(&c))
+    return p->points.size() > 2 && p->points.front() == p->points.back();
+  return false;
+}
+
+double period(const Curve& c) {
+  if (std::holds_alternative<Circle>(c) || std::holds_alternative<Ellipse>(c)) return kTwoPi;
+  if (is_closed(c)) return curve_length(c);
+  return 0.0;
+}
+
+ParameterRange parameter_range(const Curve& c, const Vec3& p0, const Vec3& p1, double coincide_tol) {
+  ParameterRange r{parameter(c, p0), parameter(c, p1)};
+  const double per = period(c);
+  if (per > 0) {
+    if ((p0 - p1).norm() <= coincide_tol) {
+      r.t1 = r.t0 + per;
+    } else {
+      r.t1 = r.t0 + std::fmod(std::fmod(r.t1 - r.t0, per) + per, per);
+      if (r.t1 <= r.t0) r.t1 += per;
+    }
+  }
+  return r;
+}
+
+double arc_length(const Curve& c, double t0, double t1) {
+  const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+  return std::visit(detail::Overload{
+                        [&](const std::monostate&) -> double { no_geometry(); },
+                        [&](const Line& l) { return (hi - lo) * l.direction.norm(); },
+                        [&](const Circle& k) { return (hi - lo) * std::abs(k.radius); },
+                        [&](const Ellipse& e) {
+                          // Pieces of at most π/8: the speed is analytic, so 16-point
+                          // Gauss-Legendre per piece is accurate to rounding for b/a > 1e-3.
+                          const int pieces = std::max(1, static_cast<int>(std::ceil((hi - lo) / (kPi / 8))));
+                          return detail::integrate([&](double t) { return ellipse_speed(e, t); }, lo, hi, pieces);
+                        },
+                        [&](const Polyline& p) {
+                          // t is arc length; outside [0, L] the polyline does not continue.
+                          const double len = cumulative(p).back();
+                          return std::max(0.0, std::min(hi, len) - std::max(lo, 0.0));
+                        }},
+                    c);
+}
+
+double curve_length(const Curve& c) {
+  return std::visit(detail::Overload{[&](const std::monostate&) -> double { no_geometry(); },
+                                     [&](const Line&) { return std::numeric_limits<double>::infinity(); },
+                                     [&](const Circle& k) { return kTwoPi * std::abs(k.radius); },
+                                     [&](const Ellipse&) { return arc_length(c, 0.0, kTwoPi); },
+                                     [&](const Polyline& p) {
+                                       return p.points.empty() ? 0.0 : cumulative(p).back();
+                                     }},
+                    c);
+}
+
+std::vector<Vec3> sample_curve(const Curve& c, double t0, double t1, double chordal_error) {
+  std::vector<Vec3> out;
+  if (const auto* p = std::get_if<Polyline>(&c)) {
+    // The polyline's own vertices inside (t0, t1), in the direction of travel.
+    const std::vector<double> s = cumulative(*p);
+    out.push_back(evaluate(c, t0));
+    if (t0 <= t1) {
+      for (std::size_t i = 0; i < s.size(); ++i)
+        if (s[i] > t0 && s[i] < t1) out.push_back(p->points[i]);
+    } else {
+      for (std::size_t i = s.size(); i-- > 0;)
+        if (s[i] < t0 && s[i] > t1) out.push_back(p->points[i]);
+    }
+    out.push_back(evaluate(c, t1));
+    return out;
+  }
+  // Largest curvature, then the angle step whose sagitta stays within the error.
+  double kappa_r = 0.0;  // radius of the tightest curvature
+  double speed = 1.0;    // largest |C'(t)|
+  if (std::holds_alternative<Line>(c)) {
+    return {evaluate(c, t0), evaluate(c, t1)};
+  } else if (const auto* k = std::get_if<Circle>(&c)) {
+    kappa_r = std::abs(k->radius);
+    speed = kappa_r;
+  } else if (const auto* e = std::get_if<Ellipse>(&c)) {
+    kappa_r = e->minor_radius * e->minor_radius / e->major_radius;
+    speed = std::max(e->major_radius, e->minor_radius);
+  } else {
+    no_geometry();
+  }
+  const double eps = std::max(chordal_error, 1e-15 * speed);
+  // Chord of length h on a circle of radius ρ has sagitta ≈ h²/(8ρ).
+  const double h = eps < kappa_r ? std::sqrt(8.0 * eps * kappa_r) : kappa_r;
+  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(t1 - t0) * speed / h)));
+  for (int i = 0; i <= n; ++i) out.push_back(evaluate(c, t0 + (t1 - t0) * i / n));
+  return out;
+}
+
+}  // namespace kintsugi::geo

@@ -1,0 +1,147 @@
+#include "geometry/curve.h"
+
+#include "generators.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+namespace kintsugi::geo {
+namespace {
+
+using testing::gen_real;
+
+TEST(Curve, CircleLengthAndRange) {
+  const Circle c{Frame{Vec3(1, 2, 3), Vec3::UnitX(), Vec3::UnitZ()}, 2.0};
+  EXPECT_NEAR(curve_length(c), 4 * kPi, 1e-14);
+  // From +x to +y is a quarter turn in the circle's direction; back is three quarters.
+  const ParameterRange q = parameter_range(c, Vec3(3, 2, 3), Vec3(1, 4, 3));
+  EXPECT_NEAR(arc_length(c, q.t0, q.t1), kPi, 1e-14);
+  const ParameterRange back = parameter_range(c, Vec3(1, 4, 3), Vec3(3, 2, 3));
+  EXPECT_NEAR(arc_length(c, back.t0, back.t1), 3 * kPi, 1e-14);
+  const ParameterRange full = parameter_range(c, Vec3(3, 2, 3), Vec3(3, 2, 3), 1e-9);
+  EXPECT_NEAR(full.t1 - full.t0, kTwoPi, 1e-15);
+}
+
+TEST(Curve, EllipsePerimeterMatchesKnownValue) {
+  // Perimeter of the ellipse a = 2, b = 1 (complete elliptic integral): 9.688448220547675...
+  const Ellipse e{Frame{}, 2.0, 1.0};
+  EXPECT_NEAR(curve_length(e), 9.688448220547675, 1e-12);
+  // A circle as an ellipse.
+  EXPECT_NEAR(curve_length(Ellipse{Frame{}, 1.5, 1.5}), 3 * kPi, 1e-12);
+}
+
+TEST(Curve, EllipseClosestPoint) {
+  const Ellipse e{Frame{}, 3.0, 1.0};
+  const CurvePoint p = closest_point(e, Vec3(0, 5, 0));
+  EXPECT_NEAR(p.distance, 4.0, 1e-12);
+  EXPECT_NEAR(p.t, kPi / 2, 1e-9);
+  // On the axis: deterministic, finite.
+  const CurvePoint a = closest_point(Curve(Circle{}), Vec3(0, 0, 2));
+  EXPECT_TRUE(a.point.allFinite());
+}
+
+TEST(Curve, LineAndPolylineLengths) {
+  const Line l{Vec3::Zero(), Vec3::UnitY()};
+  EXPECT_NEAR(arc_length(l, 3.0, -2.0), 5.0, 0.0);
+  EXPECT_TRUE(std::isinf(curve_length(l)));
+  const Polyline p{{Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 4, 0)}, 0.0};
+  EXPECT_NEAR(curve_length(p), 7.0, 1e-15);
+  EXPECT_TRUE(evaluate(p, 5.0).isApprox(Vec3(3, 2, 0)));
+  EXPECT_TRUE(tangent(p, 5.0).isApprox(Vec3(0, 1, 0)));
+  EXPECT_NEAR(arc_length(p, 1.0, 5.0), 4.0, 1e-15);
+  const CurvePoint c = closest_point(p, Vec3(4, 1, 0));
+  EXPECT_NEAR(c.t, 4.0, 1e-15);
+  EXPECT_NEAR(c.distance, 1.0, 1e-15);
+}
+
+TEST(Curve, SamplingRespectsChordalError) {
+  const Circle c{Frame{}, 10.0};
+  const std::vector<Vec3> pts = sample_curve(c, 0.0, kTwoPi, 1e-3);
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    const Vec3 mid = 0.5 * (pts[i] + pts[i + 1]);
+    EXPECT_LE(10.0 - mid.norm(), 1e-3);
+  }
+}
+
+Curve gen_curve(bool allow_line = true) {
+  const Frame f = testing::gen_frame();
+  switch (*rc::gen::inRange(allow_line ? 0 : 1, 4)) {
+    case 0: return Line{f.origin, f.x};
+    case 1: return Circle{f, gen_real(0.5, 3.0)};
+    case 2: {
+      const double a = gen_real(0.5, 3.0);
+      return Ellipse{f, a, a * gen_real(0.2, 1.0)};
+    }
+    default: {
+      Polyline p;
+      const int n = *rc::gen::inRange(2, 8);
+      for (int i = 0; i < n; ++i) p.points.push_back(testing::gen_vec(4.0));
+      return p;
+    }
+  }
+}
+
+Curve transform(const Curve& c, const testing::Similarity& m) {
+  return std::visit(
+      [&](const auto& x) -> Curve {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, Line>) {
+          return Line{m.point(x.origin), m.vector(x.direction)};
+        } else if constexpr (std::is_same_v<T, Circle>) {
+          return Circle{m.frame(x.frame), x.radius * m.scale};
+        } else if constexpr (std::is_same_v<T, Ellipse>) {
+          return Ellipse{m.frame(x.frame), x.major_radius * m.scale, x.minor_radius * m.scale};
+        } else if constexpr (std::is_same_v<T, Polyline>) {
+          Polyline p = x;
+          for (Vec3& q : p.points) q = m.point(q);
+          return p;
+        } else {
+          return x;
+        }
+      },
+      c);
+}
+
+RC_GTEST_PROP(CurveProperty, ProjectingAProjectedPointChangesNothing, ()) {
+  const Curve c = gen_curve();
+  const Vec3 p = testing::gen_vec(6.0);
+  const CurvePoint a = closest_point(c, p);
+  const CurvePoint b = closest_point(c, a.point);
+  RC_ASSERT(b.distance < 1e-9);
+  RC_ASSERT((evaluate(c, a.t) - a.point).norm() < 1e-9);
+}
+
+RC_GTEST_PROP(CurveProperty, ClosestPointIsNoFartherThanSamples, ()) {
+  const Curve c = gen_curve();
+  const Vec3 p = testing::gen_vec(6.0);
+  const CurvePoint a = closest_point(c, p);
+  const double lo = std::holds_alternative<Polyline>(c) ? 0.0 : -kPi;
+  const double hi = std::holds_alternative<Polyline>(c) ? curve_length(c) : kPi;
+  for (int i = 0; i <= 200; ++i) RC_ASSERT(a.distance <= (evaluate(c, lo + (hi - lo) * i / 200) - p).norm() + 1e-12);
+}
+
+RC_GTEST_PROP(CurveProperty, LengthIsInvariantUnderRigidMotionAndScales, ()) {
+  const Curve c = gen_curve(false);
+  const auto m = testing::gen_similarity(true);
+  const Curve d = transform(c, m);
+  const double t0 = gen_real(-1.0, 0.0), t1 = gen_real(0.0, 2.0);
+  RC_ASSERT(std::abs(curve_length(d) - m.scale * curve_length(c)) <= 1e-12 * m.scale * curve_length(c));
+  // Angles are unchanged by the motion; arc-length parameters scale with it.
+  const double k = std::holds_alternative<Polyline>(c) ? m.scale : 1.0;
+  RC_ASSERT(std::abs(arc_length(d, t0 * k, t1 * k) - m.scale * arc_length(c, t0, t1)) <=
+            1e-12 * m.scale * (1 + arc_length(c, t0, t1)));
+}
+
+RC_GTEST_PROP(CurveProperty, ArcLengthIsAdditiveAndMatchesChords, ()) {
+  const Curve c = gen_curve(false);
+  const double a = gen_real(-1.0, 0.0), b = gen_real(0.0, 1.0), e = gen_real(1.0, 2.0);
+  RC_ASSERT(std::abs(arc_length(c, a, b) + arc_length(c, b, e) - arc_length(c, a, e)) < 1e-10);
+  // Fine chords converge to the arc length from below.
+  double chords = 0.0;
+  for (int i = 0; i < 2000; ++i) chords += (evaluate(c, a + (e - a) * (i + 1) / 2000) - evaluate(c, a + (e - a) * i / 2000)).norm();
+  RC_ASSERT(chords <= arc_length(c, a, e) + 1e-9);
+  RC_ASSERT(chords >= arc_length(c, a, e) * (1 - 1e-5) - 1e-9);
+}
+
+}  // namespace
+}  // namespace kintsugi::geo
