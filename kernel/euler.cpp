@@ -27,6 +27,7 @@ const char* error_code_name(ErrorCode c) {
     case ErrorCode::last_face: return "last_face";
     case ErrorCode::different_shell: return "different_shell";
     case ErrorCode::genus: return "genus";
+    case ErrorCode::disconnects: return "disconnects";
     case ErrorCode::transaction_open: return "transaction_open";
     case ErrorCode::postcondition: return "postcondition";
   }
@@ -571,6 +572,39 @@ bool in_rotation(const Body& b, HalfedgeH h1, HalfedgeH h2) {
   return false;
 }
 
+// Would the face made from `ring` still reach the ring's face `f` through edges, faces
+// and border cycles? Walks outward from the ring; O(size of the shell), and mfkrh is rare.
+bool reaches_after_detach(const Body& b, LoopH ring, FaceH f) {
+  std::vector<std::uint8_t> seen_face(b.face_slots(), 0), seen_loop(b.loop_slots(), 0);
+  std::vector<LoopH> todo;  // loops whose half-edges' twins lead onward
+  auto enter = [&](LoopH l) -> bool {
+    if (l == ring || seen_loop[l.idx()]) return false;
+    if (b.is_border(l)) {
+      seen_loop[l.idx()] = 1;
+      todo.push_back(l);
+      return false;
+    }
+    FaceH g = b.face(l);
+    if (g == f) return true;
+    if (seen_face[g.idx()]) return false;
+    seen_face[g.idx()] = 1;
+    for (LoopH k : b.loops_of(g)) {
+      seen_loop[k.idx()] = 1;
+      todo.push_back(k);
+    }
+    return false;
+  };
+  for (HalfedgeH h : b.loop_halfedges(ring))
+    if (enter(b.loop(twin(h)))) return true;
+  while (!todo.empty()) {
+    LoopH l = todo.back();
+    todo.pop_back();
+    for (HalfedgeH h : b.loop_halfedges(l))
+      if (enter(b.loop(twin(h)))) return true;
+  }
+  return false;
+}
+
 JournalEntry entry(Op op) {
   JournalEntry e;
   e.op = op;
@@ -786,8 +820,11 @@ Result<MfkrhResult> mfkrh(Body& b, LoopH ring) {
   if (b.is_border(ring)) return err(ErrorCode::border, "loop " + ring.str() + " is a border cycle");
   if (b.is_outer(ring)) return err(ErrorCode::outer_loop, "loop " + ring.str() + " is an outer loop");
   if (b.shell_genus(b.shell(b.face(ring))) == 0) return err(ErrorCode::genus, "shell " + b.shell(b.face(ring)).str() + " has no through-hole");
-  JournalEntry e = entry(Op::mfkrh);
   FaceH f = b.face(ring);
+  if (!reaches_after_detach(b, ring, f))
+    return err(ErrorCode::disconnects, "ring " + ring.str() + " does not go around a through-hole of " + f.str() +
+                                           ": a face made from it would split the shell");
+  JournalEntry e = entry(Op::mfkrh);
   Touched t;
   MfkrhResult r = I::raw_mfkrh(b, ring, {}, t);
   e.h = {f.idx(), r.face.idx(), ring.idx(), kNone, kNone, kNone, kNone};
@@ -801,8 +838,11 @@ Result<KfmbResult> kfmb(Body& b, FaceH f) {
   if (b.next_in_face(l).valid()) return err(ErrorCode::has_rings, "face " + f.str() + " has rings");
   if (b.is_lone(l)) return err(ErrorCode::is_lone, "face " + f.str() + " has no edges");
   if (b.shell_face_count(b.shell(f)) <= 1) return err(ErrorCode::last_face, "face " + f.str() + " is its shell's last face");
-  for (HalfedgeH o : b.loop_halfedges(l))
+  for (HalfedgeH o : b.loop_halfedges(l)) {
     if (b.is_border(twin(o))) return err(ErrorCode::border, "edge " + edge_of(o).str() + " already borders a gap");
+    if (b.loop(twin(o)) == l)
+      return err(ErrorCode::border, "edge " + edge_of(o).str() + " has " + f.str() + " on both sides (a seam)");
+  }
   JournalEntry e = entry(Op::kfmb);
   e.h = {f.idx(), l.idx(), kNone, kNone, kNone, kNone, kNone};
   e.saved = I::save(b, nullptr, nullptr, &b.surface(f), b.same_sense(f));

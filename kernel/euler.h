@@ -42,6 +42,7 @@ enum class ErrorCode {
   last_face,          // the shell would be left without faces
   different_shell,    // faces in different shells
   genus,              // no through-hole to close
+  disconnects,        // the result would split a shell in two
   transaction_open,   // refused while a transaction is open
   postcondition,      // the operator's result broke an invariant (a kernel bug)
 };
@@ -173,12 +174,15 @@ Result<Done> kfmrh(Body& b, FaceH keep, FaceH kill);
 
 // mfkrh — make face, kill ring and hole.  ΔF+1 ΔR−1 ΔH−1.
 //   Ring `l` of a face becomes the outer loop of a new face in the same shell (no surface).
-//   pre:  l is a ring (not an outer loop, not a border cycle); the shell has genus ≥ 1.
+//   pre:  l is a ring (not an outer loop, not a border cycle); the shell has genus ≥ 1; the
+//         new face stays connected to the ring's old face through other faces (else the
+//         ring does not go around a through-hole, and the shell would split instead).
 //   inverse: kfmrh.
 Result<MfkrhResult> mfkrh(Body& b, LoopH ring);
 
 // kfmb — kill face, make border cycle.  ΔF−1 ΔB+1.  (Opens a gap.)
-//   pre:  f has no rings; no edge of f already has a border cycle on its other side;
+//   pre:  f has no rings; no edge of f already has a border cycle on its other side or f
+//         on both sides (a seam);
 //         f is not its shell's last face.
 //   inverse: mfkb.
 Result<KfmbResult> kfmb(Body& b, FaceH f);
