@@ -1,0 +1,38 @@
+// A small, strict command-line parser: positional arguments, `--name value` options and
+// `--flag` switches declared up front. Anything undeclared is an error that names it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace kintsugi::cli {
+
+class Args {
+ public:
+  // `options` take a value; `flags` do not. Returns false with *error set on an unknown
+  // option, a missing value, or a repeated option.
+  bool parse(const std::vector<std::string>& argv, const std::set<std::string>& options,
+             const std::set<std::string>& flags, std::string* error);
+
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool has(const std::string& name) const { return values_.count(name) || flags_.count(name); }
+  std::optional<std::string> value(const std::string& name) const;
+
+  // Typed values; on a malformed value they set *error naming the option and return nullopt.
+  std::optional<double> number(const std::string& name, double fallback, std::string* error) const;
+  std::optional<long long> integer(const std::string& name, long long fallback, long long lo, long long hi,
+                                   std::string* error) const;
+
+ private:
+  std::vector<std::string> positional_;
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+};
+
+// Parses a whole string as a finite double.
+std::optional<double> parse_double(const std::string& s);
+
+}  // namespace kintsugi::cli

@@ -1,0 +1,26 @@
+// The verbs of the `kintsugi` program. Each lives in apps/cmd_<verb>.cpp and prints its
+// own --help. Exit codes: 0 success, 1 the model is invalid (check), 2 bad input or usage.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace kintsugi::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInvalid = 1;
+constexpr int kExitBadInput = 2;
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+};
+
+const std::vector<Command>& commands();
+
+int cmd_generate(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_check(const std::vector<std::string>&, std::ostream&, std::ostream&);
+
+}  // namespace kintsugi::cli

@@ -1,0 +1,66 @@
+#include "apps/generators.h"
+
+#include "kernel/builders.h"
+
+#include <stdexcept>
+
+namespace kintsugi::cli {
+
+namespace {
+
+double num(const Args& a, const std::string& name, double fallback) {
+  std::string err;
+  auto v = a.number(name, fallback, &err);
+  if (!v) throw std::invalid_argument(err);
+  return *v;
+}
+
+long long whole(const Args& a, const std::string& name, long long fallback, long long lo, long long hi) {
+  std::string err;
+  auto v = a.integer(name, fallback, lo, hi, &err);
+  if (!v) throw std::invalid_argument(err);
+  return *v;
+}
+
+Model plain(Body b) {
+  Model m;
+  m.body = std::move(b);
+  return m;
+}
+
+}  // namespace
+
+const std::vector<Generator>& generators() {
+  static const std::vector<Generator> table = {
+      {"box", "  --sx X --sy Y --sz Z   edge lengths (default 1 1 1)", {"--sx", "--sy", "--sz"}, {},
+       [](const Args& a) { return plain(build::box(num(a, "--sx", 1), num(a, "--sy", 1), num(a, "--sz", 1))); }},
+      {"prism", "  --sides N (3..1000, default 6) --radius R (1) --height H (1)   prism over a regular polygon",
+       {"--sides", "--radius", "--height"}, {},
+       [](const Args& a) {
+         return plain(build::prism(build::regular_polygon(int(whole(a, "--sides", 6, 3, 1000)), num(a, "--radius", 1)),
+                                   num(a, "--height", 1)));
+       }},
+      {"pyramid", "  --sides N (3..1000, default 4) --radius R (1) --height H (1)   pyramid over a regular polygon",
+       {"--sides", "--radius", "--height"}, {},
+       [](const Args& a) {
+         return plain(build::pyramid(build::regular_polygon(int(whole(a, "--sides", 4, 3, 1000)), num(a, "--radius", 1)),
+                                     num(a, "--height", 1)));
+       }},
+      {"cylinder", "  --radius R (1) --height H (2)", {"--radius", "--height"}, {},
+       [](const Args& a) { return plain(build::cylinder(num(a, "--radius", 1), num(a, "--height", 2))); }},
+      {"cone", "  --radius R (1) --height H (2)", {"--radius", "--height"}, {},
+       [](const Args& a) { return plain(build::cone(num(a, "--radius", 1), num(a, "--height", 2))); }},
+      {"sphere", "  --radius R (1)", {"--radius"}, {},
+       [](const Args& a) { return plain(build::sphere(num(a, "--radius", 1))); }},
+      {"torus", "  --major R (3) --minor r (1), r < R", {"--major", "--minor"}, {},
+       [](const Args& a) { return plain(build::torus(num(a, "--major", 3), num(a, "--minor", 1))); }},
+      {"grid", "  --faces N (6..10000000, default 600)   a unit box whose sides are cut into k x k quads, 6k^2 ~ N",
+       {"--faces", "--size"}, {},
+       [](const Args& a) {
+         return plain(build::grid_box(std::size_t(whole(a, "--faces", 600, 6, 10'000'000)), num(a, "--size", 1)));
+       }},
+  };
+  return table;
+}
+
+}  // namespace kintsugi::cli

@@ -1,0 +1,56 @@
+// kintsugi: repair the topology of reverse-engineered B-rep models.
+#include "apps/commands.h"
+
+#include <exception>
+#include <iostream>
+#include <new>
+
+namespace kintsugi::cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table = {
+      {"generate", "write a built-in model", cmd_generate},
+      {"check", "check a model's topology and geometry", cmd_check},
+  };
+  return table;
+}
+
+namespace {
+void usage(std::ostream& os) {
+  os << "usage: kintsugi VERB [options]   (kintsugi VERB --help for each verb)\n\nverbs:\n";
+  for (const Command& c : commands()) os << "  " << c.name << std::string(12 - std::string(c.name).size(), ' ') << c.summary << "\n";
+  os << "\nExit codes: 0 success, 1 invalid model (check), 2 bad input or usage.\n";
+}
+}  // namespace
+
+}  // namespace kintsugi::cli
+
+int main(int argc, char** argv) {
+  using namespace kintsugi::cli;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    usage(std::cerr);
+    return kExitBadInput;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    usage(std::cout);
+    return kExitOk;
+  }
+  for (const Command& c : commands()) {
+    if (args[0] != c.name) continue;
+    try {
+      return c.run({args.begin() + 1, args.end()}, std::cout, std::cerr);
+    } catch (const std::bad_alloc&) {
+      std::cerr << "kintsugi " << c.name << ": out of memory\n";
+      return kExitBadInput;
+    } catch (const std::exception& e) {
+      // Builders and readers report bad parameters by exception; anything else is a bug,
+      // still reported rather than crashing.
+      std::cerr << "kintsugi " << c.name << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
+  std::cerr << "kintsugi: unknown verb '" << args[0] << "'\n\n";
+  usage(std::cerr);
+  return kExitBadInput;
+}

@@ -1,0 +1,96 @@
+#include "apps/model_files.h"
+
+#include "io/native_json.h"
+#ifdef KINTSUGI_HAVE_OCCT
+#include "io/occt/exchange.h"
+#endif
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace kintsugi::cli {
+
+namespace {
+
+std::string extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+std::optional<std::string> format_of(const std::string& path, std::string* error) {
+  std::string e = extension(path);
+  if (e == ".json") return "json";
+  if (e == ".step" || e == ".stp") return "step";
+  if (e == ".brep") return "brep";
+  *error = path + ": unknown file type '" + e + "' (use .json, .step, .stp or .brep)";
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string formats_supported() {
+#ifdef KINTSUGI_HAVE_OCCT
+  return ".json (native), .step/.stp (STEP), .brep (OpenCASCADE)";
+#else
+  return ".json (native); this build has no OpenCASCADE, so .step/.stp/.brep are refused";
+#endif
+}
+
+std::optional<Model> load_model(const std::string& path, std::string* error) {
+  auto fmt = format_of(path, error);
+  if (!fmt) return std::nullopt;
+  if (*fmt == "json") {
+    auto doc = io::read_native_file(path, error);
+    if (!doc) return std::nullopt;
+    Model m{std::move(doc->body), std::move(doc->meta), doc->units, "json"};
+    return m;
+  }
+#ifdef KINTSUGI_HAVE_OCCT
+  auto imp = io::import_cad(path, *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error);
+  if (!imp) return std::nullopt;
+  Model m;
+  m.body = std::move(imp->body);
+  m.units = imp->units;
+  m.format = *fmt;
+  return m;
+#else
+  *error = path + ": this build of kintsugi has no OpenCASCADE, so it cannot read " + *fmt + " files";
+  return std::nullopt;
+#endif
+}
+
+bool save_model(const Model& m, const std::string& path, const std::string& input, std::string* error) {
+  auto fmt = format_of(path, error);
+  if (!fmt) return false;
+  if (*fmt == "json") return io::write_file_atomically(path, io::write_native(m.body, m.meta, m.units), error, input);
+#ifdef KINTSUGI_HAVE_OCCT
+  std::error_code ec;
+  if (!input.empty() && std::filesystem::exists(path, ec) && std::filesystem::equivalent(path, input, ec)) {
+    *error = path + ": refusing to overwrite the input file";
+    return false;
+  }
+  // Export to a temporary file beside the target, then rename: never a partial output.
+  std::filesystem::path target(path);
+  std::filesystem::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + target.extension().string());
+  if (!io::export_cad(m.body, tmp.string(), *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error, m.units)) {
+    std::filesystem::remove(tmp, ec);
+    return false;
+  }
+  std::filesystem::rename(tmp, target, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    *error = path + ": cannot write: " + ec.message();
+    return false;
+  }
+  return true;
+#else
+  *error = path + ": this build of kintsugi has no OpenCASCADE, so it cannot write " + *fmt + " files";
+  return false;
+#endif
+}
+
+}  // namespace kintsugi::cli
