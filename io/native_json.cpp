@@ -1,0 +1,1004 @@
+// The native JSON format (spec/file-format.md): a bounded parser, a validating reader
+// that turns the document into a BodyDescription and lets assemble() check the topology,
+// a writer, and the file helpers.
+#include "io/native_json.h"
+
+#include "kernel/assemble.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <numbers>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace kintsugi::io {
+
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+// ---- JSON pointers (RFC 6901) -------------------------------------------------------
+
+std::string escape_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+std::string at(const std::string& ptr, std::string_view key) { return ptr + "/" + escape_token(key); }
+std::string at(const std::string& ptr, std::size_t index) { return ptr + "/" + std::to_string(index); }
+
+// "<pointer>: <message>", or the message alone for the whole document.
+std::string located(const std::string& ptr, const std::string& message) {
+  return ptr.empty() ? message : ptr + ": " + message;
+}
+
+// Shortest text that reads back as the same double (what the writer writes, too).
+std::string number_text(double d) { return json(d).dump(); }
+
+// What a value is, for "expected X, found Y" messages: short values verbatim.
+std::string describe_value(const json& j) {
+  switch (j.type()) {
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array";
+    case json::value_t::string: {
+      const auto& s = j.get_ref<const std::string&>();
+      if (s.size() > 40) return "a string";
+      return "the string " + j.dump(-1, ' ', false, json::error_handler_t::replace);
+    }
+    default: return j.dump();
+  }
+}
+
+// ---- bounded parsing ----------------------------------------------------------------
+//
+// nlohmann's parser is iterative, but the document it builds is destroyed and copied
+// recursively, and a 100 000-deep `[[[[...` would overflow the stack there. So we build
+// the document ourselves from SAX events, refusing nesting beyond kMaxNativeDepth before
+// it exists. The same events let us name the place of a syntax error, refuse numbers that
+// overflow a double (which the lexer turns into ±inf), and refuse duplicate keys (which
+// nlohmann would silently resolve to the last one).
+class BoundedDocumentBuilder {
+ public:
+  json root;
+  std::string error;
+
+  bool null() { return add(json(nullptr)); }
+  bool boolean(bool v) { return add(json(v)); }
+  bool number_integer(json::number_integer_t v) { return add(json(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return add(json(v)); }
+  bool number_float(json::number_float_t v, const json::string_t& text) {
+    if (!std::isfinite(v)) return fail("number " + text + " is out of the range of a double");
+    return add(json(v));
+  }
+  bool string(json::string_t& v) { return add(json(std::move(v))); }
+  bool binary(json::binary_t&) { return fail("binary values are not part of JSON"); }
+  bool start_object(std::size_t) { return open(json::object()); }
+  bool start_array(std::size_t) { return open(json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool key(json::string_t& k) {
+    Level& top = stack_.back();
+    if (top.node->contains(k)) {
+      top.key = std::move(k);
+      top.has_key = true;
+      return fail("key appears twice in the same object");
+    }
+    top.key = std::move(k);
+    top.has_key = true;
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const json::exception& ex) {
+    // ex.what() is "[json.exception.parse_error.101] parse error at line 1, column 5: ...".
+    std::string what = ex.what();
+    if (auto close_bracket = what.find("] "); what.rfind("[json.exception", 0) == 0 && close_bracket != std::string::npos)
+      what = what.substr(close_bracket + 2);
+    return fail("not valid JSON: " + what);
+  }
+
+ private:
+  struct Level {
+    json* node;
+    std::string key;         // objects: the key whose value comes next
+    bool has_key = false;
+    std::string open_child;  // the token of the child container being built, if any
+  };
+  std::vector<Level> stack_;
+
+  // Pointer of the value being parsed now.
+  std::string here() const {
+    std::string p;
+    for (std::size_t i = 0; i < stack_.size(); ++i) {
+      const Level& l = stack_[i];
+      if (i + 1 < stack_.size())
+        p += "/" + l.open_child;
+      else if (l.node->is_array())
+        p += "/" + std::to_string(l.node->size());
+      else if (l.has_key)
+        p += "/" + escape_token(l.key);
+    }
+    return p;
+  }
+  bool fail(const std::string& message) {
+    error = located(here(), message);
+    return false;
+  }
+  // Adds a value where the parser is; returns where it went (nullptr: refused).
+  json* insert(json v) {
+    if (stack_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    Level& top = stack_.back();
+    if (top.node->is_array()) {
+      top.open_child = std::to_string(top.node->size());
+      top.node->push_back(std::move(v));
+      return &top.node->back();
+    }
+    top.open_child = escape_token(top.key);
+    top.has_key = false;
+    json& slot = (*top.node)[top.key];
+    slot = std::move(v);
+    return &slot;
+  }
+  bool add(json v) { return insert(std::move(v)) != nullptr; }
+  bool open(json container) {
+    if (stack_.size() >= kMaxNativeDepth)
+      return fail("nesting is deeper than " + std::to_string(kMaxNativeDepth) + " levels");
+    json* node = insert(std::move(container));
+    // Children are complete before their next sibling is added, so `node` stays valid
+    // while it is on the stack.
+    stack_.push_back({node, {}, false, {}});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+};
+
+// ---- validating reader --------------------------------------------------------------
+
+constexpr std::uint64_t kMaxId = 0xFFFFFFFEu;        // 0xFFFFFFFF is the invalid handle
+constexpr std::uint64_t kMaxEdgeId = 0x7FFFFFFEu;    // its half-edges must be ids too
+constexpr double kUnitTolerance = 1e-9;              // unit length and perpendicularity
+
+const char* const kUnits[] = {"nm", "um", "mm", "cm", "m", "in", "ft"};
+
+// One kind of element: ids → position in its array, for references and messages.
+struct IdTable {
+  const char* kind;    // "vertex"
+  const char* plural;  // "vertices": also the top-level key
+  std::unordered_map<std::uint32_t, std::size_t> index;
+};
+
+class DocumentReader {
+ public:
+  explicit DocumentReader(std::string* error) : error_(error) {}
+
+  std::optional<NativeDocument> read(const json& doc) {
+    NativeDocument out;
+    BodyDescription d;
+    if (!top_level(doc, &out) || !vertices(doc["vertices"], &d) || !edges(doc["edges"], &d) ||
+        !loops(doc["loops"], &d) || !faces(doc["faces"], &d) || !shells(doc["shells"], &d) || !references(d))
+      return std::nullopt;
+    AssembleError why;
+    std::optional<Body> body = assemble(d, &why);
+    if (!body) {
+      fail(pointer_of(why.element), why.message);
+      return std::nullopt;
+    }
+    out.body = std::move(*body);
+    return out;
+  }
+
+ private:
+  std::string* error_;
+  IdTable vertex_ids_{"vertex", "vertices", {}}, edge_ids_{"edge", "edges", {}}, loop_ids_{"loop", "loops", {}},
+      face_ids_{"face", "faces", {}}, shell_ids_{"shell", "shells", {}};
+
+  bool fail(const std::string& ptr, const std::string& message) {
+    if (error_) *error_ = located(ptr, message);
+    return false;
+  }
+
+  // -- values --
+
+  // Checks `j` is an object whose keys are all in `allowed`; names every stranger.
+  bool object_with_keys(const json& j, const std::string& ptr, std::initializer_list<std::string_view> allowed,
+                        const std::string& what) {
+    if (!j.is_object()) return fail(ptr, "expected " + what + " (an object), found " + describe_value(j));
+    std::vector<std::string> unknown;
+    for (const auto& item : j.items()) {
+      bool known = false;
+      for (std::string_view a : allowed) known = known || item.key() == a;
+      if (!known) unknown.push_back(item.key());
+    }
+    if (unknown.empty()) return true;
+    std::string names, expected;
+    for (const auto& u : unknown) names += (names.empty() ? "\"" : ", \"") + u + "\"";
+    for (std::string_view a : allowed) expected += (expected.empty() ? "" : ", ") + std::string(a);
+    return fail(at(ptr, unknown.front()),
+                std::string(unknown.size() == 1 ? "unknown key " : "unknown keys ") + names + " in " + what +
+                    " (it has " + expected + ")");
+  }
+  // The member `key` of object `obj`, or nullptr after reporting it missing.
+  const json* required(const json& obj, const std::string& ptr, const char* key) {
+    auto it = obj.find(key);
+    if (it == obj.end()) {
+      fail(at(ptr, key), "is missing");
+      return nullptr;
+    }
+    return &*it;
+  }
+  // The member `key`, or nullptr when it is absent or null (an optional reference).
+  static const json* optional_member(const json& obj, const char* key) {
+    auto it = obj.find(key);
+    return it == obj.end() || it->is_null() ? nullptr : &*it;
+  }
+
+  bool number(const json& j, const std::string& ptr, double* out) {
+    if (!j.is_number()) return fail(ptr, "expected a number, found " + describe_value(j));
+    *out = j.get<double>();
+    // The parser refuses overflow; this guards documents built any other way.
+    if (!std::isfinite(*out)) return fail(ptr, "expected a finite number");
+    return true;
+  }
+  bool positive(const json& j, const std::string& ptr, double* out) {
+    if (!number(j, ptr, out)) return false;
+    if (!(*out > 0)) return fail(ptr, "must be positive, found " + number_text(*out));
+    return true;
+  }
+  bool integer(const json& j, const std::string& ptr, std::uint64_t max, std::uint64_t* out) {
+    if (j.is_number_unsigned()) {
+      *out = j.get<std::uint64_t>();
+    } else if (j.is_number_integer()) {
+      return fail(ptr, "expected a non-negative integer, found " + j.dump());
+    } else if (j.is_number_float()) {
+      return fail(ptr, "expected an integer, found " + j.dump());
+    } else {
+      return fail(ptr, "expected a non-negative integer, found " + describe_value(j));
+    }
+    if (*out > max) return fail(ptr, std::to_string(*out) + " is out of range (at most " + std::to_string(max) + ")");
+    return true;
+  }
+  bool id(const json& j, const std::string& ptr, std::uint64_t max, std::uint32_t* out) {
+    std::uint64_t v;
+    if (!integer(j, ptr, max, &v)) return false;
+    *out = std::uint32_t(v);
+    return true;
+  }
+  bool vec3(const json& j, const std::string& ptr, geo::Vec3* out) {
+    if (!j.is_array() || j.size() != 3)
+      return fail(ptr, "expected [x, y, z] (an array of 3 numbers), found " +
+                           (j.is_array() ? "an array of " + std::to_string(j.size()) : describe_value(j)));
+    for (std::size_t i = 0; i < 3; ++i)
+      if (!number(j[i], at(ptr, i), &(*out)[Eigen::Index(i)])) return false;
+    return true;
+  }
+  bool unit_vec3(const json& j, const std::string& ptr, geo::Vec3* out) {
+    if (!vec3(j, ptr, out)) return false;
+    double length = out->norm();
+    if (!(std::abs(length - 1.0) <= kUnitTolerance))
+      return fail(ptr, "is not a unit vector (its length is " + number_text(length) + ")");
+    return true;
+  }
+  bool frame(const json& j, const std::string& ptr, geo::Frame* out) {
+    if (!object_with_keys(j, ptr, {"origin", "x", "z"}, "a frame")) return false;
+    const json *o, *x, *z;
+    if (!(o = required(j, ptr, "origin")) || !(x = required(j, ptr, "x")) || !(z = required(j, ptr, "z"))) return false;
+    if (!vec3(*o, at(ptr, "origin"), &out->origin) || !unit_vec3(*x, at(ptr, "x"), &out->x) ||
+        !unit_vec3(*z, at(ptr, "z"), &out->z))
+      return false;
+    double dot = out->x.dot(out->z);
+    if (!(std::abs(dot) <= kUnitTolerance))
+      return fail(ptr, "x and z are not perpendicular (their dot product is " + number_text(dot) + ")");
+    return true;
+  }
+  // Reads the number member `key` of `obj`, checked by `check` (one of the above).
+  template <class Check>
+  bool field(const json& obj, const std::string& ptr, const char* key, double* out, Check check) {
+    const json* v = required(obj, ptr, key);
+    return v && (this->*check)(*v, at(ptr, key), out);
+  }
+  // The "type" member of a geometry object.
+  bool geometry_type(const json& j, const std::string& ptr, const char* what, std::string* type) {
+    if (!j.is_object()) return fail(ptr, std::string("expected ") + what + " (an object or null), found " + describe_value(j));
+    const json* t = required(j, ptr, "type");
+    if (!t) return false;
+    if (!t->is_string()) return fail(at(ptr, "type"), "expected a string, found " + describe_value(*t));
+    *type = t->get<std::string>();
+    return true;
+  }
+
+  // -- geometry --
+
+  bool surface(const json* j, const std::string& ptr, geo::Surface* out) {
+    if (!j || j->is_null()) {
+      *out = std::monostate{};
+      return true;
+    }
+    std::string type;
+    if (!geometry_type(*j, ptr, "a surface", &type)) return false;
+    const std::string what = "a " + type + " surface";
+    auto with_frame = [&](geo::Frame* f) {
+      const json* fr = required(*j, ptr, "frame");
+      return fr && frame(*fr, at(ptr, "frame"), f);
+    };
+    if (type == "plane") {
+      geo::Plane s;
+      if (!object_with_keys(*j, ptr, {"type", "frame"}, what) || !with_frame(&s.frame)) return false;
+      *out = s;
+    } else if (type == "cylinder" || type == "sphere") {
+      double r;
+      geo::Frame f;
+      if (!object_with_keys(*j, ptr, {"type", "frame", "radius"}, what) || !with_frame(&f) ||
+          !field(*j, ptr, "radius", &r, &DocumentReader::positive))
+        return false;
+      if (type == "cylinder")
+        *out = geo::Cylinder{f, r};
+      else
+        *out = geo::Sphere{f, r};
+    } else if (type == "cone") {
+      geo::Cone s;
+      if (!object_with_keys(*j, ptr, {"type", "frame", "radius", "half_angle"}, what) || !with_frame(&s.frame) ||
+          !field(*j, ptr, "radius", &s.radius, &DocumentReader::number) ||
+          !field(*j, ptr, "half_angle", &s.half_angle, &DocumentReader::number))
+        return false;
+      // radius 0 is allowed: the frame origin is then the apex.
+      if (!(s.radius >= 0)) return fail(at(ptr, "radius"), "must not be negative, found " + number_text(s.radius));
+      if (!(std::abs(s.half_angle) < std::numbers::pi / 2) || s.half_angle == 0)
+        return fail(at(ptr, "half_angle"),
+                    "must be in (-pi/2, pi/2) and not 0 (radians), found " + number_text(s.half_angle));
+      *out = s;
+    } else if (type == "torus") {
+      geo::Torus s;
+      if (!object_with_keys(*j, ptr, {"type", "frame", "major_radius", "minor_radius"}, what) ||
+          !with_frame(&s.frame) || !field(*j, ptr, "major_radius", &s.major_radius, &DocumentReader::positive) ||
+          !field(*j, ptr, "minor_radius", &s.minor_radius, &DocumentReader::positive))
+        return false;
+      if (!(s.minor_radius < s.major_radius))
+        return fail(at(ptr, "minor_radius"), "must be less than major_radius (" + number_text(s.major_radius) +
+                                                 "), found " + number_text(s.minor_radius));
+      *out = s;
+    } else {
+      return fail(at(ptr, "type"), "unknown surface type \"" + type +
+                                       "\" (expected plane, cylinder, cone, sphere or torus; null for none)");
+    }
+    return true;
+  }
+
+  bool curve(const json* j, const std::string& ptr, geo::Curve* out) {
+    if (!j || j->is_null()) {
+      *out = std::monostate{};
+      return true;
+    }
+    std::string type;
+    if (!geometry_type(*j, ptr, "a curve", &type)) return false;
+    const std::string what = "a " + type + " curve";
+    if (type == "line") {
+      geo::Line c;
+      const json *o, *d;
+      if (!object_with_keys(*j, ptr, {"type", "origin", "direction"}, what) || !(o = required(*j, ptr, "origin")) ||
+          !(d = required(*j, ptr, "direction")) || !vec3(*o, at(ptr, "origin"), &c.origin) ||
+          !unit_vec3(*d, at(ptr, "direction"), &c.direction))
+        return false;
+      *out = c;
+    } else if (type == "circle") {
+      geo::Circle c;
+      const json* f;
+      if (!object_with_keys(*j, ptr, {"type", "frame", "radius"}, what) || !(f = required(*j, ptr, "frame")) ||
+          !frame(*f, at(ptr, "frame"), &c.frame) || !field(*j, ptr, "radius", &c.radius, &DocumentReader::positive))
+        return false;
+      *out = c;
+    } else if (type == "ellipse") {
+      geo::Ellipse c;
+      const json* f;
+      if (!object_with_keys(*j, ptr, {"type", "frame", "major_radius", "minor_radius"}, what) ||
+          !(f = required(*j, ptr, "frame")) || !frame(*f, at(ptr, "frame"), &c.frame) ||
+          !field(*j, ptr, "major_radius", &c.major_radius, &DocumentReader::positive) ||
+          !field(*j, ptr, "minor_radius", &c.minor_radius, &DocumentReader::positive))
+        return false;
+      if (!(c.minor_radius <= c.major_radius))
+        return fail(at(ptr, "minor_radius"), "must not exceed major_radius (" + number_text(c.major_radius) +
+                                                 "), found " + number_text(c.minor_radius));
+      *out = c;
+    } else if (type == "polyline") {
+      geo::Polyline c;
+      const json* pts;
+      if (!object_with_keys(*j, ptr, {"type", "points", "chordal_error"}, what) ||
+          !(pts = required(*j, ptr, "points")) ||
+          !field(*j, ptr, "chordal_error", &c.chordal_error, &DocumentReader::number))
+        return false;
+      if (!(c.chordal_error >= 0))
+        return fail(at(ptr, "chordal_error"), "must not be negative, found " + number_text(c.chordal_error));
+      const std::string pp = at(ptr, "points");
+      if (!pts->is_array() || pts->size() < 2)
+        return fail(pp, "expected an array of at least 2 points, found " +
+                            (pts->is_array() ? "an array of " + std::to_string(pts->size()) : describe_value(*pts)));
+      c.points.resize(pts->size());
+      for (std::size_t i = 0; i < pts->size(); ++i)
+        if (!vec3((*pts)[i], at(pp, i), &c.points[i])) return false;
+      *out = std::move(c);
+    } else {
+      return fail(at(ptr, "type"),
+                  "unknown curve type \"" + type + "\" (expected line, circle, ellipse or polyline; null for none)");
+    }
+    return true;
+  }
+
+  // -- document --
+
+  bool top_level(const json& doc, NativeDocument* out) {
+    if (!object_with_keys(doc, "", {"format", "version", "units", "vertices", "edges", "loops", "faces", "shells", "meta"},
+                          "a kintsugi-brep document"))
+      return false;
+    const json *format, *version, *units;
+    if (!(format = required(doc, "", "format"))) return false;
+    if (*format != "kintsugi-brep") return fail("/format", "expected \"kintsugi-brep\", found " + describe_value(*format));
+    if (!(version = required(doc, "", "version"))) return false;
+    std::uint64_t v;
+    if (!integer(*version, "/version", kMaxId, &v)) return false;
+    if (v != 1) return fail("/version", "unsupported version " + std::to_string(v) + " (this reader reads version 1)");
+    if (!(units = required(doc, "", "units"))) return false;
+    bool known = false;
+    for (const char* u : kUnits) known = known || *units == u;
+    if (!known)
+      return fail("/units", "expected one of \"nm\", \"um\", \"mm\", \"cm\", \"m\", \"in\", \"ft\", found " +
+                                describe_value(*units));
+    out->units = units->get<std::string>();
+    for (const char* key : {"vertices", "edges", "loops", "faces", "shells"}) {
+      const json* a = required(doc, "", key);
+      if (!a) return false;
+      if (!a->is_array()) return fail(at("", key), "expected an array, found " + describe_value(*a));
+    }
+    if (auto it = doc.find("meta"); it != doc.end()) {
+      if (!meta(*it)) return false;
+      out->meta = *it;
+    }
+    return true;
+  }
+
+  // meta is free-form; the two keys kintsugi itself reads are checked.
+  bool meta(const json& m) {
+    if (!m.is_object()) return fail("/meta", "expected an object, found " + describe_value(m));
+    if (auto t = m.find("tolerance"); t != m.end()) {
+      double tol;
+      if (!positive(*t, "/meta/tolerance", &tol)) return false;
+    }
+    if (auto d = m.find("defects"); d != m.end()) {
+      if (!d->is_array()) return fail("/meta/defects", "expected an array, found " + describe_value(*d));
+      for (std::size_t i = 0; i < d->size(); ++i) {
+        const json& defect = (*d)[i];
+        const std::string p = at("/meta/defects", i);
+        if (!defect.is_object()) return fail(p, "expected a defect (an object), found " + describe_value(defect));
+        const json *type, *elements, *size;
+        double s;
+        if (!(type = required(defect, p, "type")) || !(elements = required(defect, p, "elements")) ||
+            !(size = required(defect, p, "size")))
+          return false;
+        if (!type->is_string()) return fail(at(p, "type"), "expected a string, found " + describe_value(*type));
+        if (!elements->is_array()) return fail(at(p, "elements"), "expected an array, found " + describe_value(*elements));
+        if (!number(*size, at(p, "size"), &s)) return false;
+      }
+    }
+    return true;
+  }
+
+  // Records `id` of element `i` in `t`: unique, and below the bound assemble() enforces
+  // (2·count + 1024), checked here too so the message names the place.
+  bool record(IdTable& t, std::uint32_t id, std::size_t i, std::size_t count) {
+    const std::string p = at(at("", t.plural), i) + "/id";
+    std::uint64_t limit = 2 * std::uint64_t(count) + 1024;
+    if (id >= limit)
+      return fail(p, std::string(t.kind) + " id " + std::to_string(id) + " is too large for " + std::to_string(count) +
+                         " " + t.plural + " (ids must be below " + std::to_string(limit) + ")");
+    auto [it, fresh] = t.index.emplace(id, i);
+    if (!fresh)
+      return fail(p, std::string(t.kind) + " id " + std::to_string(id) + " is used twice (also at " +
+                         at(at("", t.plural), it->second) + ")");
+    return true;
+  }
+
+  bool vertices(const json& a, BodyDescription* d) {
+    d->vertices.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string p = at("/vertices", i);
+      const json& v = a[i];
+      VertexDesc& out = d->vertices[i];
+      const json *id_j, *pt;
+      if (!object_with_keys(v, p, {"id", "point"}, "a vertex") || !(id_j = required(v, p, "id")) ||
+          !(pt = required(v, p, "point")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
+          !vec3(*pt, at(p, "point"), &out.point) || !record(vertex_ids_, out.id, i, a.size()))
+        return false;
+    }
+    return true;
+  }
+
+  bool edges(const json& a, BodyDescription* d) {
+    d->edges.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string p = at("/edges", i);
+      const json& e = a[i];
+      EdgeDesc& out = d->edges[i];
+      const json *id_j, *he;
+      if (!object_with_keys(e, p, {"id", "he", "curve"}, "an edge") || !(id_j = required(e, p, "id")) ||
+          !(he = required(e, p, "he")) || !id(*id_j, at(p, "id"), kMaxEdgeId, &out.id))
+        return false;
+      const std::string hp = at(p, "he");
+      if (!he->is_array() || he->size() != 2)
+        return fail(hp, "expected the edge's two half-edges (an array of 2 objects), found " +
+                            (he->is_array() ? "an array of " + std::to_string(he->size()) : describe_value(*he)));
+      for (std::size_t side = 0; side < 2; ++side) {
+        const json& h = (*he)[side];
+        const std::string sp = at(hp, side);
+        const json *o, *n, *l;
+        if (!object_with_keys(h, sp, {"origin", "next", "loop"}, "a half-edge") || !(o = required(h, sp, "origin")) ||
+            !(n = required(h, sp, "next")) || !(l = required(h, sp, "loop")) ||
+            !id(*o, at(sp, "origin"), kMaxId, &out.he[side].origin) ||
+            !id(*n, at(sp, "next"), kMaxId, &out.he[side].next) ||
+            !id(*l, at(sp, "loop"), kMaxId, &out.he[side].loop))
+          return false;
+      }
+      if (!curve(optional_member(e, "curve"), at(p, "curve"), &out.curve) ||
+          !record(edge_ids_, out.id, i, a.size()))
+        return false;
+    }
+    return true;
+  }
+
+  bool loops(const json& a, BodyDescription* d) {
+    d->loops.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string p = at("/loops", i);
+      const json& l = a[i];
+      LoopDesc& out = d->loops[i];
+      const json* id_j;
+      if (!object_with_keys(l, p, {"id", "face", "first", "lone"}, "a loop") || !(id_j = required(l, p, "id")) ||
+          !id(*id_j, at(p, "id"), kMaxId, &out.id))
+        return false;
+      std::uint32_t v;
+      if (const json* f = optional_member(l, "face")) {
+        if (!id(*f, at(p, "face"), kMaxId, &v)) return false;
+        out.face = v;
+      }
+      const json* first = optional_member(l, "first");
+      const json* lone = optional_member(l, "lone");
+      if (first && lone)
+        return fail(p, "has both \"first\" and \"lone\": a loop is either a cycle of half-edges or a lone vertex");
+      if (!first && !lone)
+        return fail(p, "has neither \"first\" (a half-edge of its cycle) nor \"lone\" (its lone vertex)");
+      if (first) {
+        if (!id(*first, at(p, "first"), kMaxId, &v)) return false;
+        out.first = v;
+      } else {
+        if (!id(*lone, at(p, "lone"), kMaxId, &v)) return false;
+        out.lone = v;
+      }
+      if (!record(loop_ids_, out.id, i, a.size())) return false;
+    }
+    return true;
+  }
+
+  bool faces(const json& a, BodyDescription* d) {
+    d->faces.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string p = at("/faces", i);
+      const json& f = a[i];
+      FaceDesc& out = d->faces[i];
+      const json *id_j, *shell, *ls, *sense;
+      if (!object_with_keys(f, p, {"id", "shell", "loops", "same_sense", "surface"}, "a face") ||
+          !(id_j = required(f, p, "id")) || !(shell = required(f, p, "shell")) || !(ls = required(f, p, "loops")) ||
+          !(sense = required(f, p, "same_sense")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
+          !id(*shell, at(p, "shell"), kMaxId, &out.shell))
+        return false;
+      const std::string lp = at(p, "loops");
+      if (!ls->is_array() || ls->empty())
+        return fail(lp, "expected the face's loops, outer first (a non-empty array), found " +
+                            (ls->is_array() ? "an empty array" : describe_value(*ls)));
+      out.loops.resize(ls->size());
+      for (std::size_t k = 0; k < ls->size(); ++k)
+        if (!id((*ls)[k], at(lp, k), kMaxId, &out.loops[k])) return false;
+      if (!sense->is_boolean()) return fail(at(p, "same_sense"), "expected true or false, found " + describe_value(*sense));
+      out.same_sense = sense->get<bool>();
+      if (!surface(optional_member(f, "surface"), at(p, "surface"), &out.surface) ||
+          !record(face_ids_, out.id, i, a.size()))
+        return false;
+    }
+    return true;
+  }
+
+  bool shells(const json& a, BodyDescription* d) {
+    d->shells.resize(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string p = at("/shells", i);
+      const json& s = a[i];
+      ShellDesc& out = d->shells[i];
+      const json *id_j, *genus;
+      if (!object_with_keys(s, p, {"id", "genus"}, "a shell") || !(id_j = required(s, p, "id")) ||
+          !(genus = required(s, p, "genus")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
+          !id(*genus, at(p, "genus"), kMaxId, &out.genus) || !record(shell_ids_, out.id, i, a.size()))
+        return false;
+    }
+    return true;
+  }
+
+  // -- references --
+
+  bool refers(const IdTable& t, std::uint64_t id, const std::string& ptr, const char* noun) {
+    if (id <= kMaxId && t.index.count(std::uint32_t(id))) return true;
+    return fail(ptr, std::string("refers to ") + noun + " " + std::to_string(id) + ", which does not exist");
+  }
+  bool refers_to_halfedge(std::uint32_t h, const std::string& ptr) {
+    if (edge_ids_.index.count(h >> 1)) return true;
+    return fail(ptr, "refers to half-edge " + std::to_string(h) + ", which does not exist (there is no edge " +
+                         std::to_string(h >> 1) + ")");
+  }
+
+  // Every reference names an element of the right kind; what they say about each other
+  // (cycles, ownership, Euler–Poincaré) is assemble()'s to check.
+  bool references(const BodyDescription& d) {
+    for (std::size_t i = 0; i < d.edges.size(); ++i)
+      for (std::size_t side = 0; side < 2; ++side) {
+        const std::string p = at(at(at("/edges", i), "he"), side);
+        const HalfedgeDesc& h = d.edges[i].he[side];
+        if (!refers(vertex_ids_, h.origin, at(p, "origin"), "vertex") || !refers_to_halfedge(h.next, at(p, "next")) ||
+            !refers(loop_ids_, h.loop, at(p, "loop"), "loop"))
+          return false;
+      }
+    for (std::size_t i = 0; i < d.loops.size(); ++i) {
+      const std::string p = at("/loops", i);
+      const LoopDesc& l = d.loops[i];
+      if (l.face && !refers(face_ids_, *l.face, at(p, "face"), "face")) return false;
+      if (l.first && !refers_to_halfedge(*l.first, at(p, "first"))) return false;
+      if (l.lone && !refers(vertex_ids_, *l.lone, at(p, "lone"), "vertex")) return false;
+    }
+    for (std::size_t i = 0; i < d.faces.size(); ++i) {
+      const std::string p = at("/faces", i);
+      const FaceDesc& f = d.faces[i];
+      if (!refers(shell_ids_, f.shell, at(p, "shell"), "shell")) return false;
+      for (std::size_t k = 0; k < f.loops.size(); ++k) {
+        const std::string lp = at(at(p, "loops"), k);
+        if (!refers(loop_ids_, f.loops[k], lp, "loop")) return false;
+        const LoopDesc& l = d.loops[loop_ids_.index.at(f.loops[k])];
+        if (!l.face)
+          return fail(lp, "loop " + std::to_string(l.id) + " is a border cycle (its face is null), not a loop of face " +
+                              std::to_string(f.id));
+        if (*l.face != f.id)
+          return fail(lp, "loop " + std::to_string(l.id) + " belongs to face " + std::to_string(*l.face) +
+                              ", not to face " + std::to_string(f.id));
+      }
+    }
+    return true;
+  }
+
+  // The pointer of an element named by assemble() or the topology check: "edge 3",
+  // "edge 3 half-edge 1", "loop 2", or a printed handle "h7", "v3", "f1".
+  std::string pointer_of(const std::string& element) const {
+    auto number_after = [&](std::size_t pos, std::uint64_t* n) {
+      std::uint64_t v = 0;
+      auto [end, ec] = std::from_chars(element.data() + pos, element.data() + element.size(), v);
+      if (ec != std::errc() || end == element.data() + pos) return std::string::npos;
+      *n = v;
+      return std::size_t(end - element.data());
+    };
+    auto place = [&](const IdTable& t, std::uint64_t id) -> std::string {
+      auto it = id <= kMaxId ? t.index.find(std::uint32_t(id)) : t.index.end();
+      return it == t.index.end() ? std::string() : at(at("", t.plural), it->second);
+    };
+    const std::pair<const char*, const IdTable*> words[] = {{"vertex ", &vertex_ids_}, {"edge ", &edge_ids_},
+                                                            {"loop ", &loop_ids_},     {"face ", &face_ids_},
+                                                            {"shell ", &shell_ids_}};
+    std::uint64_t n;
+    for (auto [word, table] : words) {
+      std::size_t len = std::strlen(word);
+      if (element.rfind(word, 0) != 0) continue;
+      std::size_t end = number_after(len, &n);
+      if (end == std::string::npos) return "";
+      std::string p = place(*table, n);
+      std::uint64_t side;
+      if (table == &edge_ids_ && !p.empty() && element.compare(end, 11, " half-edge ") == 0 &&
+          number_after(end + 11, &side) != std::string::npos && side < 2)
+        p = at(at(p, "he"), std::size_t(side));
+      return p;
+    }
+    if (element.size() < 2 || number_after(1, &n) != element.size()) return "";
+    switch (element[0]) {
+      case 'v': return place(vertex_ids_, n);
+      case 'e': return place(edge_ids_, n);
+      case 'h': {
+        std::string p = place(edge_ids_, n >> 1);
+        return p.empty() ? p : at(at(p, "he"), std::size_t(n & 1));
+      }
+      case 'l': return place(loop_ids_, n);
+      case 'f': return place(face_ids_, n);
+      case 's': return place(shell_ids_, n);
+      default: return "";
+    }
+  }
+};
+
+// ---- writer -------------------------------------------------------------------------
+
+ojson vec3_json(const geo::Vec3& p) { return ojson::array({p.x(), p.y(), p.z()}); }
+ojson frame_json(const geo::Frame& f) {
+  ojson j = ojson::object();
+  j["origin"] = vec3_json(f.origin);
+  j["x"] = vec3_json(f.x);
+  j["z"] = vec3_json(f.z);
+  return j;
+}
+
+template <class... Fs>
+struct Overload : Fs... {
+  using Fs::operator()...;
+};
+
+ojson surface_json(const geo::Surface& s) {
+  return std::visit(
+      Overload{[](const std::monostate&) { return ojson(nullptr); },
+               [](const geo::Plane& p) { return ojson{{"type", "plane"}, {"frame", frame_json(p.frame)}}; },
+               [](const geo::Cylinder& c) {
+                 return ojson{{"type", "cylinder"}, {"frame", frame_json(c.frame)}, {"radius", c.radius}};
+               },
+               [](const geo::Cone& c) {
+                 return ojson{{"type", "cone"},
+                              {"frame", frame_json(c.frame)},
+                              {"radius", c.radius},
+                              {"half_angle", c.half_angle}};
+               },
+               [](const geo::Sphere& c) {
+                 return ojson{{"type", "sphere"}, {"frame", frame_json(c.frame)}, {"radius", c.radius}};
+               },
+               [](const geo::Torus& t) {
+                 return ojson{{"type", "torus"},
+                              {"frame", frame_json(t.frame)},
+                              {"major_radius", t.major_radius},
+                              {"minor_radius", t.minor_radius}};
+               }},
+      s);
+}
+
+ojson curve_json(const geo::Curve& c) {
+  return std::visit(
+      Overload{[](const std::monostate&) { return ojson(nullptr); },
+               [](const geo::Line& l) {
+                 return ojson{{"type", "line"}, {"origin", vec3_json(l.origin)}, {"direction", vec3_json(l.direction)}};
+               },
+               [](const geo::Circle& k) {
+                 return ojson{{"type", "circle"}, {"frame", frame_json(k.frame)}, {"radius", k.radius}};
+               },
+               [](const geo::Ellipse& e) {
+                 return ojson{{"type", "ellipse"},
+                              {"frame", frame_json(e.frame)},
+                              {"major_radius", e.major_radius},
+                              {"minor_radius", e.minor_radius}};
+               },
+               [](const geo::Polyline& p) {
+                 ojson pts = ojson::array();
+                 for (const auto& q : p.points) pts.push_back(vec3_json(q));
+                 return ojson{{"type", "polyline"}, {"points", std::move(pts)}, {"chordal_error", p.chordal_error}};
+               }},
+      c);
+}
+
+// One element on one line, with a space after ':' and ',' (nlohmann's compact form has
+// none, its indented form puts every number on its own line).
+void dump_inline(const ojson& j, std::string& out) {
+  if (j.is_object()) {
+    out += '{';
+    bool first = true;
+    for (const auto& item : j.items()) {
+      if (!first) out += ", ";
+      first = false;
+      out += ojson(item.key()).dump(-1, ' ', false, ojson::error_handler_t::replace);
+      out += ": ";
+      dump_inline(item.value(), out);
+    }
+    out += '}';
+  } else if (j.is_array()) {
+    out += '[';
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      if (i) out += ", ";
+      dump_inline(j[i], out);
+    }
+    out += ']';
+  } else {
+    out += j.dump(-1, ' ', false, ojson::error_handler_t::replace);
+  }
+}
+
+void section(std::string& out, const char* key, const std::vector<ojson>& items) {
+  out += "  \"";
+  out += key;
+  out += "\": [";
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out += i ? ",\n    " : "\n    ";
+    dump_inline(items[i], out);
+  }
+  out += items.empty() ? "],\n" : "\n  ],\n";
+}
+
+ojson optional_id(const std::optional<std::uint32_t>& v) { return v ? ojson(*v) : ojson(nullptr); }
+
+bool fail_io(std::string* error, const std::string& message) {
+  if (error) *error = message;
+  return false;
+}
+
+}  // namespace
+
+std::optional<NativeDocument> read_native(std::string_view text, std::string* error) {
+  if (text.size() > kMaxNativeBytes) {
+    if (error)
+      *error = "document is " + std::to_string(text.size()) + " bytes, more than the limit of " +
+               std::to_string(kMaxNativeBytes);
+    return std::nullopt;
+  }
+  try {
+    BoundedDocumentBuilder builder;
+    if (!json::sax_parse(text.begin(), text.end(), &builder)) {
+      if (error) *error = builder.error.empty() ? "not valid JSON" : builder.error;
+      return std::nullopt;
+    }
+    return DocumentReader(error).read(builder.root);
+  } catch (const std::exception& e) {
+    // Nothing above throws on bad input; this is for running out of memory.
+    if (error) *error = std::string("cannot read the document: ") + e.what();
+    return std::nullopt;
+  }
+}
+
+std::string write_native(const Body& b, const nlohmann::json& meta, const std::string& units) {
+  const BodyDescription d = describe(b);
+  std::vector<ojson> vs, es, ls, fs, ss;
+  for (const auto& v : d.vertices) vs.push_back(ojson{{"id", v.id}, {"point", vec3_json(v.point)}});
+  for (const auto& e : d.edges) {
+    ojson he = ojson::array();
+    for (const auto& h : e.he) he.push_back(ojson{{"origin", h.origin}, {"next", h.next}, {"loop", h.loop}});
+    es.push_back(ojson{{"id", e.id}, {"he", std::move(he)}, {"curve", curve_json(e.curve)}});
+  }
+  for (const auto& l : d.loops) {
+    ojson j{{"id", l.id}, {"face", optional_id(l.face)}};
+    if (l.first)
+      j["first"] = *l.first;
+    else
+      j["lone"] = optional_id(l.lone);
+    ls.push_back(std::move(j));
+  }
+  for (const auto& f : d.faces)
+    fs.push_back(ojson{{"id", f.id},
+                       {"shell", f.shell},
+                       {"loops", f.loops},
+                       {"same_sense", f.same_sense},
+                       {"surface", surface_json(f.surface)}});
+  for (const auto& s : d.shells) ss.push_back(ojson{{"id", s.id}, {"genus", s.genus}});
+
+  std::string out = "{\n  \"format\": \"kintsugi-brep\",\n  \"version\": 1,\n  \"units\": ";
+  out += json(units).dump(-1, ' ', false, json::error_handler_t::replace) + ",\n";
+  section(out, "vertices", vs);
+  section(out, "edges", es);
+  section(out, "loops", ls);
+  section(out, "faces", fs);
+  section(out, "shells", ss);
+  std::string m = meta.dump(2, ' ', false, json::error_handler_t::replace);
+  out += "  \"meta\": ";
+  for (char c : m) {
+    out += c;
+    if (c == '\n') out += "  ";
+  }
+  out += "\n}\n";
+  return out;
+}
+
+std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error) {
+  auto refuse = [&](const std::string& why) {
+    if (error) *error = path + ": " + why;
+    return std::nullopt;
+  };
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return refuse(std::string("cannot open: ") + std::strerror(errno));
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return refuse(std::string("cannot stat: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) return refuse("is a directory, not a file");
+  if (S_ISREG(st.st_mode) && std::uint64_t(st.st_size) > kMaxNativeBytes)
+    return refuse("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+                  std::to_string(kMaxNativeBytes) + "; refusing to read it");
+  // Read with the cap, not the size from stat: the file may grow, or be a pipe.
+  std::string text;
+  std::array<char, 1 << 16> chunk;
+  for (;;) {
+    ssize_t n = ::read(fd, chunk.data(), chunk.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return refuse(std::string("cannot read: ") + std::strerror(errno));
+    }
+    if (n == 0) break;
+    if (text.size() + std::size_t(n) > kMaxNativeBytes)
+      return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
+    text.append(chunk.data(), std::size_t(n));
+  }
+  std::string why;
+  auto doc = read_native(text, &why);
+  if (!doc) return refuse(why);
+  return doc;
+}
+
+bool write_file_atomically(const std::string& path, const std::string& contents, std::string* error,
+                           const std::string& must_not_overwrite) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  if (path.empty() || !target.has_filename()) return fail_io(error, "'" + path + "' is not a file name");
+  if (!must_not_overwrite.empty()) {
+    std::error_code ec;
+    if (fs::exists(target, ec) && fs::exists(must_not_overwrite, ec) && fs::equivalent(target, must_not_overwrite, ec))
+      return fail_io(error, path + ": refusing to overwrite the input file " + must_not_overwrite);
+  }
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+
+  // A fresh name in the same directory (so the rename stays within one file system);
+  // O_EXCL never reuses someone else's file, 0666 lets the umask decide the mode.
+  static std::atomic<unsigned> counter{0};
+  std::string temp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp = (dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                   std::to_string(counter++)))
+               .string();
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0)
+    return fail_io(error, path + ": cannot create a temporary file in " + dir.string() + ": " + std::strerror(errno));
+
+  auto abandon = [&](const std::string& what) {
+    std::string why = path + ": " + what + ": " + std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    ::unlink(temp.c_str());
+    return fail_io(error, why);
+  };
+  for (std::size_t done = 0; done < contents.size();) {
+    ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return abandon("cannot write " + temp);
+    }
+    done += std::size_t(n);
+  }
+  if (::fsync(fd) != 0) return abandon("cannot flush " + temp);
+  int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) return abandon("cannot close " + temp);
+  if (::rename(temp.c_str(), path.c_str()) != 0) return abandon("cannot rename " + temp + " over it");
+  // Make the rename itself durable; failing here loses nothing already visible.
+  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    (void)::fsync(dfd);
+    ::close(dfd);
+  }
+  return true;
+}
+
+}  // namespace kintsugi::io

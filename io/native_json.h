@@ -1,0 +1,60 @@
+// The native file format: a body's topology and geometry as JSON (spec/file-format.md).
+//
+// Ids in the file are the body's handles, so element names ("e3", "f1") survive a
+// write → read, and writing then reading gives a body that Body::equals the original.
+//
+// The reader trusts nothing: it checks types, ranges, references and the topology
+// invariants (through kintsugi::assemble), and refuses malformed input with a message that
+// starts with the JSON pointer (RFC 6901) of the offending place, e.g.
+//   "/edges/3/he/1/next: refers to half-edge 99, which does not exist".
+// Problems with the document as a whole (too large, empty) have no pointer prefix.
+// It never crashes on input, never recurses deeper than a fixed nesting limit, and
+// allocates in proportion to the input, which is itself capped at 1 GiB.
+#pragma once
+
+#include "kernel/body.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace kintsugi::io {
+
+// Largest document the reader accepts, in bytes.
+inline constexpr std::size_t kMaxNativeBytes = std::size_t(1) << 30;
+// Deepest nesting of arrays and objects the reader accepts (the format itself needs 6;
+// the rest is room for `meta`).
+inline constexpr std::size_t kMaxNativeDepth = 64;
+
+struct NativeDocument {
+  Body body;
+  nlohmann::json meta = nlohmann::json::object();  // free-form, preserved verbatim
+  std::string units = "mm";
+};
+
+// Parses text; on failure returns nullopt and sets *error (if given) to a message that
+// starts with the JSON pointer of the offending place.
+std::optional<NativeDocument> read_native(std::string_view text, std::string* error);
+
+// The document for `b` (live elements only). Never throws: strings in `meta` that are
+// not UTF-8 are written with U+FFFD in their place, and a non-finite number (which no
+// valid body has) is written as null, which the reader then refuses.
+std::string write_native(const Body& b, const nlohmann::json& meta = nlohmann::json::object(),
+                         const std::string& units = "mm");
+
+// Reads a whole file and parses it. Refuses files over kMaxNativeBytes and paths that
+// cannot be read; every message starts with the path ("model.json: /faces/2: ...").
+std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error);
+
+// Writes `contents` to `path` so that `path` holds either its old contents or all of the
+// new ones, never a part: writes a temporary file in the same directory, fsyncs it, and
+// renames it over `path`. Refuses (returns false, *error set) when `path` is the same file
+// as `must_not_overwrite` (typically the input of a repair). On failure no temporary file
+// is left behind.
+bool write_file_atomically(const std::string& path, const std::string& contents, std::string* error,
+                           const std::string& must_not_overwrite = "");
+
+}  // namespace kintsugi::io
