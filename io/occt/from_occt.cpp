@@ -1,0 +1,568 @@
+// TopoDS_Shape -> Body (spec/exchange.md, "Import").
+//
+// Faces are read with their orientation composed down from the shape, so a face's
+// wires, explored edge by edge, already run counter-clockwise about the face's outward
+// normal: that order is our loop order. Degenerated edges (sphere poles, cone apexes)
+// are dropped; a seam edge appears twice in its face's wire, once each way, and becomes
+// one edge with both half-edges in that face's loop. Half-edges no face uses are free
+// edges' far sides: they are linked into border cycles at the end.
+#include "io/occt/convert.h"
+
+#include "geometry/surface.h"
+#include "geometry/types.h"
+#include "kernel/assemble.h"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Tool.hxx>
+#include <GCPnts_QuasiUniformDeflection.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <GeomConvert.hxx>
+#include <GeomLib_IsPlanarSurface.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_OffsetCurve.hxx>
+#include <Geom_OffsetSurface.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
+#include <Geom_ToroidalSurface.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Precision.hxx>
+#include <ShapeCustom_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Ax3.hxx>
+
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace kintsugi::io::occt {
+
+namespace {
+
+using geo::Vec3;
+
+Vec3 vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+Vec3 vec(const gp_Pnt& p) { return vec(p.XYZ()); }
+Vec3 vec(const gp_Dir& d) { return vec(d.XYZ()); }
+
+// Our frame for an OpenCASCADE frame: same origin, x and axis; y = z × x. For a
+// left-handed gp_Ax3 that flips y, which reverses the u-parameter and so the normal:
+// `direct` reports whether OpenCASCADE's surface normal is ours.
+geo::Frame frame(const gp_Ax3& a) { return geo::Frame{vec(a.Location()), vec(a.XDirection()), vec(a.Direction())}; }
+geo::Frame frame(const gp_Ax2& a) { return geo::Frame{vec(a.Location()), vec(a.XDirection()), vec(a.Direction())}; }
+
+struct Analytic {
+  geo::Surface surface;
+  bool normal_agrees = true;  // OpenCASCADE's surface normal is our surface's normal
+};
+
+// Elementary surfaces map one to one (spec/exchange.md).
+std::optional<Analytic> elementary(const Handle(Geom_Surface)& s) {
+  if (auto p = Handle(Geom_Plane)::DownCast(s)) {
+    const gp_Ax3& a = p->Position();
+    return Analytic{geo::Plane{frame(a)}, a.Direct()};
+  }
+  if (auto c = Handle(Geom_CylindricalSurface)::DownCast(s)) {
+    const gp_Ax3& a = c->Position();
+    return Analytic{geo::Cylinder{frame(a), c->Radius()}, a.Direct()};
+  }
+  if (auto c = Handle(Geom_ConicalSurface)::DownCast(s)) {
+    const gp_Ax3& a = c->Position();
+    return Analytic{geo::Cone{frame(a), c->RefRadius(), c->SemiAngle()}, a.Direct()};
+  }
+  if (auto sp = Handle(Geom_SphericalSurface)::DownCast(s)) {
+    const gp_Ax3& a = sp->Position();
+    return Analytic{geo::Sphere{frame(a), sp->Radius()}, a.Direct()};
+  }
+  if (auto t = Handle(Geom_ToroidalSurface)::DownCast(s)) {
+    const gp_Ax3& a = t->Position();
+    return Analytic{geo::Torus{frame(a), t->MajorRadius(), t->MinorRadius()}, a.Direct()};
+  }
+  return std::nullopt;
+}
+
+const char* occt_surface_name(const Handle(Geom_Surface)& s) {
+  if (s->IsKind(STANDARD_TYPE(Geom_BSplineSurface))) return "B-spline surface";
+  if (s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) return "Bezier surface";
+  if (s->IsKind(STANDARD_TYPE(Geom_SurfaceOfRevolution))) return "surface of revolution";
+  if (s->IsKind(STANDARD_TYPE(Geom_SurfaceOfLinearExtrusion))) return "surface of linear extrusion";
+  if (s->IsKind(STANDARD_TYPE(Geom_OffsetSurface))) return "offset surface";
+  return s->DynamicType()->Name();
+}
+
+// The face's surface as ours, or the reason it cannot be (the surface type name, for
+// the per-type count, and a sentence).
+struct SurfaceResult {
+  std::optional<Analytic> analytic;
+  bool converted = false;  // a free-form surface recognised as analytic
+  std::string type, why;
+};
+
+SurfaceResult face_surface(const TopoDS_Face& face) {
+  SurfaceResult r;
+  Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+  if (s.IsNull()) return r.type = "no surface", r.why = "the face has no surface", r;
+  for (int guard = 0; guard < 16; ++guard) {
+    if (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(s)) {
+      s = t->BasisSurface();
+    } else if (auto o = Handle(Geom_OffsetSurface)::DownCast(s)) {
+      Handle(Geom_Surface) eq = o->Surface();  // the equivalent non-offset surface, if analytic
+      if (eq.IsNull()) break;
+      s = eq;
+    } else {
+      break;
+    }
+  }
+  if ((r.analytic = elementary(s))) return r;
+  // Free-form: planar, or analytic, within the face's precision.
+  double tol = std::max(1e-6, BRep_Tool::Tolerance(face));
+  r.type = occt_surface_name(s);
+  Handle(Geom_Surface) freeform = s;
+  if (!s->IsKind(STANDARD_TYPE(Geom_BSplineSurface)) && !s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) {
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    try {
+      freeform = GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(s, u0, u1, v0, v1));
+    } catch (const Standard_Failure&) {
+      freeform.Nullify();
+    }
+  }
+  Handle(Geom_Surface) ana;
+  if (!freeform.IsNull()) {
+    GeomLib_IsPlanarSurface planar(freeform, tol);
+    if (planar.IsPlanar()) {
+      ana = new Geom_Plane(planar.Plan());
+    } else {
+      ShapeCustom_Surface sc(freeform);
+      ana = sc.ConvertToAnalytical(tol, Standard_False);
+    }
+  }
+  if (!ana.IsNull()) r.analytic = elementary(ana);
+  if (!r.analytic) {
+    r.why = std::string(r.type) + " not within precision (" + std::to_string(tol) + ") of an analytic surface";
+    return r;
+  }
+  // The recognised surface's parametrisation is not the original's: compare the
+  // original normal with ours at the middle of the face's parameter box.
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  gp_Pnt p;
+  gp_Vec du, dv;
+  s->D1(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, du, dv);
+  Vec3 n0 = vec(du.Crossed(dv).XYZ());
+  geo::SurfacePoint sp = geo::closest_point(r.analytic->surface, vec(p));
+  r.analytic->normal_agrees = n0.dot(sp.normal) >= 0;
+  r.converted = true;
+  return r;
+}
+
+// The edge's curve as ours, along the FORWARD edge (half-edge 2e).
+geo::Curve edge_curve(const TopoDS_Edge& forward, int index, std::vector<std::string>* warnings) {
+  double f = 0, l = 0;
+  Handle(Geom_Curve) c = BRep_Tool::Curve(forward, f, l);
+  if (c.IsNull()) {
+    BRepLib::BuildCurve3d(forward);
+    c = BRep_Tool::Curve(forward, f, l);
+  }
+  if (!c.IsNull()) {
+    Handle(Geom_Curve) basis = c;
+    while (auto t = Handle(Geom_TrimmedCurve)::DownCast(basis)) basis = t->BasisCurve();
+    if (auto line = Handle(Geom_Line)::DownCast(basis)) {
+      const gp_Ax1& a = line->Position();
+      return geo::Line{vec(a.Location()), vec(a.Direction())};
+    }
+    if (auto circ = Handle(Geom_Circle)::DownCast(basis))
+      return geo::Circle{frame(circ->Position()), circ->Radius()};
+    if (auto el = Handle(Geom_Ellipse)::DownCast(basis))
+      return geo::Ellipse{frame(el->Position()), el->MajorRadius(), el->MinorRadius()};
+  }
+  // Anything else: a polyline within a chordal error proportional to the edge's size.
+  BRepAdaptor_Curve ad(forward);
+  double len = ad.Value(ad.FirstParameter()).Distance(ad.Value(0.5 * (ad.FirstParameter() + ad.LastParameter()))) +
+               ad.Value(ad.LastParameter()).Distance(ad.Value(0.5 * (ad.FirstParameter() + ad.LastParameter())));
+  double deflection = std::max(1e-7, 1e-5 * len);
+  GCPnts_QuasiUniformDeflection sampler(ad, deflection);
+  geo::Polyline pl;
+  pl.chordal_error = deflection;
+  if (sampler.IsDone() && sampler.NbPoints() >= 2) {
+    for (int i = 1; i <= sampler.NbPoints(); ++i) pl.points.push_back(vec(sampler.Value(i)));
+  } else {
+    for (int i = 0; i <= 64; ++i)
+      pl.points.push_back(vec(ad.Value(ad.FirstParameter() + (ad.LastParameter() - ad.FirstParameter()) * i / 64.0)));
+    pl.chordal_error = 0;  // unknown
+  }
+  warnings->push_back("edge #" + std::to_string(index) + ": " +
+                      (c.IsNull() ? std::string("no 3D curve") : std::string(c->DynamicType()->Name())) +
+                      " sampled as a polyline of " + std::to_string(pl.points.size()) + " points (chordal error " +
+                      std::to_string(pl.chordal_error) + ")");
+  return pl;
+}
+
+struct UnionFind {
+  std::vector<std::uint32_t> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) { p[find(a)] = find(b); }
+};
+
+constexpr std::uint32_t kNone = ~std::uint32_t{0};
+
+}  // namespace
+
+std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& locate, std::vector<std::string>* warnings,
+                               std::string* error) {
+  std::vector<std::string> local_warnings;
+  if (!warnings) warnings = &local_warnings;
+  std::string local_error;
+  if (!error) error = &local_error;
+  if (shape.IsNull()) return *error = "no shape", std::nullopt;
+
+  // Faces once each, with their orientation composed from the shape down.
+  TopTools_IndexedMapOfShape face_map;
+  std::vector<TopoDS_Face> faces;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    if (face_map.Contains(ex.Current())) {
+      warnings->push_back(locate(ex.Current(), face_map.FindIndex(ex.Current())) +
+                          ": appears twice in the shape; read once");
+      continue;
+    }
+    face_map.Add(ex.Current());
+    faces.push_back(TopoDS::Face(ex.Current()));
+  }
+  if (faces.empty()) return *error = "the shape has no faces (only wires, edges or vertices)", std::nullopt;
+
+  // Surfaces first: every unsupported face is reported, counted per type.
+  std::vector<Analytic> surf(faces.size());
+  std::map<std::string, int> refused_count;
+  std::vector<std::string> refused;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    SurfaceResult r = face_surface(faces[i]);
+    if (!r.analytic) {
+      refused_count[r.type]++;
+      refused.push_back(locate(faces[i], int(i + 1)) + ": " + r.why);
+      continue;
+    }
+    surf[i] = *r.analytic;
+    if (r.converted)
+      warnings->push_back(locate(faces[i], int(i + 1)) + ": " + r.type + " recognised as a " +
+                          geo::surface_type_name(r.analytic->surface));
+  }
+  if (!refused.empty()) {
+    std::string msg = std::to_string(refused.size()) + " of " + std::to_string(faces.size()) +
+                      " faces are on surfaces kintsugi cannot represent (";
+    bool first = true;
+    for (const auto& [type, n] : refused_count) {
+      msg += (first ? "" : ", ") + std::to_string(n) + " " + type;
+      first = false;
+    }
+    msg += "):";
+    for (const std::string& r : refused) msg += "\n  " + r;
+    *error = msg;
+    return std::nullopt;
+  }
+
+  // Vertices and edges, numbered as met; degenerated edges are not ours.
+  TopTools_IndexedMapOfShape vertex_map, edge_map;
+  std::vector<std::uint32_t> edge_from, edge_to;  // vertex ids of the FORWARD edge
+  auto vertex_id = [&](const TopoDS_Vertex& v) { return std::uint32_t(vertex_map.Add(v) - 1); };
+  auto edge_id = [&](const TopoDS_Edge& e) {
+    int before = edge_map.Extent();
+    int i = edge_map.Add(e);
+    if (i > before) {
+      TopoDS_Edge fwd = TopoDS::Edge(e.Oriented(TopAbs_FORWARD));
+      TopoDS_Vertex a, b;
+      TopExp::Vertices(fwd, a, b);
+      edge_from.push_back(vertex_id(a));
+      edge_to.push_back(vertex_id(b));
+    }
+    return std::uint32_t(i - 1);
+  };
+
+  struct LoopBuild {
+    std::uint32_t face;
+    std::vector<std::uint32_t> hes;  // half-edge ids in order
+    std::uint32_t lone = kNone;
+  };
+  std::vector<LoopBuild> loops;
+  std::vector<std::vector<std::uint32_t>> face_loops(faces.size());
+  for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+    const TopoDS_Face& face = faces[fi];
+    TopoDS_Wire outer = BRepTools::OuterWire(face);
+    std::vector<TopoDS_Wire> wires;
+    for (TopExp_Explorer ex(face, TopAbs_WIRE); ex.More(); ex.Next()) {
+      TopoDS_Wire w = TopoDS::Wire(ex.Current());
+      if (w.Orientation() == TopAbs_INTERNAL || w.Orientation() == TopAbs_EXTERNAL) {
+        warnings->push_back(locate(face, int(fi + 1)) + ": an internal wire is ignored");
+        continue;
+      }
+      if (!outer.IsNull() && w.IsSame(outer))
+        wires.insert(wires.begin(), w);
+      else
+        wires.push_back(w);
+    }
+    if (wires.empty()) {
+      *error = locate(face, int(fi + 1)) + ": has no boundary (an unbounded face)";
+      return std::nullopt;
+    }
+    for (const TopoDS_Wire& w : wires) {
+      // The wire's edges as stored, with orientations composed from the face down: STEP
+      // edge loops and OpenCASCADE's own wires are stored in order. Only when that order
+      // does not chain up is BRepTools_WireExplorer asked for one (it reports closed
+      // edges FORWARD whatever their orientation, so orientations still come from the
+      // stored occurrences).
+      LoopBuild lb{std::uint32_t(fi), {}, kNone};
+      TopoDS_Vertex degenerate_vertex;
+      std::map<std::uint32_t, std::vector<std::uint32_t>> occurrences;  // edge id -> half-edges
+      bool slit = false;
+      for (TopoDS_Iterator it(w); it.More(); it.Next()) {
+        const TopoDS_Edge& e = TopoDS::Edge(it.Value());
+        if (BRep_Tool::Degenerated(e)) {
+          degenerate_vertex = TopExp::FirstVertex(e);
+          continue;
+        }
+        TopAbs_Orientation o = e.Orientation();
+        if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) {
+          slit = true;
+          continue;
+        }
+        std::uint32_t id = edge_id(e);
+        std::uint32_t h = 2 * id + (o == TopAbs_FORWARD ? 0u : 1u);
+        lb.hes.push_back(h);
+        occurrences[id].push_back(h);
+      }
+      if (slit) {
+        *error = locate(face, int(fi + 1)) + ": has an internal or external edge (a slit), which kintsugi does not read";
+        return std::nullopt;
+      }
+      auto chains = [&](const std::vector<std::uint32_t>& hs) {
+        for (std::size_t k = 0; k < hs.size(); ++k) {
+          std::uint32_t h = hs[k], n = hs[(k + 1) % hs.size()];
+          std::uint32_t to = (h & 1u) ? edge_from[h / 2] : edge_to[h / 2];
+          std::uint32_t from = (n & 1u) ? edge_to[n / 2] : edge_from[n / 2];
+          if (to != from) return false;
+        }
+        return true;
+      };
+      if (!chains(lb.hes)) {
+        std::vector<std::uint32_t> ordered;
+        std::map<std::uint32_t, std::size_t> seen;
+        for (BRepTools_WireExplorer wex(w, face); wex.More(); wex.Next()) {
+          if (BRep_Tool::Degenerated(wex.Current())) continue;
+          std::uint32_t id = edge_id(wex.Current());
+          const std::vector<std::uint32_t>& occ = occurrences[id];
+          std::size_t k = seen[id]++;
+          if (occ.empty() || k >= occ.size()) break;
+          if (occ.size() == 1) {
+            ordered.push_back(occ[0]);
+          } else {  // a seam: the explorer's orientation first, then the other one
+            std::uint32_t h = 2 * id + (wex.Orientation() == TopAbs_FORWARD ? 0u : 1u);
+            ordered.push_back(k == 0 ? h : (h ^ 1u));
+          }
+        }
+        if (ordered.size() != lb.hes.size() || !chains(ordered)) {
+          *error = locate(face, int(fi + 1)) + ": a wire is not one connected cycle of edges";
+          return std::nullopt;
+        }
+        lb.hes = std::move(ordered);
+      }
+      if (lb.hes.empty()) {
+        if (degenerate_vertex.IsNull()) continue;  // an empty wire
+        lb.lone = vertex_id(degenerate_vertex);
+      }
+      face_loops[fi].push_back(std::uint32_t(loops.size()));
+      loops.push_back(std::move(lb));
+    }
+    if (face_loops[fi].empty()) {
+      *error = locate(face, int(fi + 1)) + ": has no boundary edges";
+      return std::nullopt;
+    }
+  }
+
+  // Half-edge incidences.
+  const std::size_t ne = std::size_t(edge_map.Extent());
+  std::vector<std::uint32_t> he_origin(2 * ne), he_next(2 * ne, kNone), he_prev(2 * ne, kNone), he_loop(2 * ne, kNone);
+  for (std::size_t e = 0; e < ne; ++e) {
+    he_origin[2 * e] = edge_from[e];
+    he_origin[2 * e + 1] = edge_to[e];
+  }
+  auto target = [&](std::uint32_t h) { return he_origin[h ^ 1u]; };
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    const LoopBuild& lb = loops[li];
+    for (std::size_t k = 0; k < lb.hes.size(); ++k) {
+      std::uint32_t h = lb.hes[k], n = lb.hes[(k + 1) % lb.hes.size()];
+      if (he_loop[h] != kNone) {
+        std::uint32_t other = loops[he_loop[h]].face;
+        bool twin_used = he_loop[h ^ 1u] != kNone;
+        *error = "edge #" + std::to_string(h / 2 + 1) + " is used " + (twin_used ? "by more than two faces (non-manifold)" : "twice in the same direction (inconsistent orientation)") +
+                 ": " + locate(faces[other], int(other + 1)) + " and " + locate(faces[lb.face], int(lb.face + 1));
+        return std::nullopt;
+      }
+      if (target(h) != he_origin[n]) {
+        *error = locate(faces[lb.face], int(lb.face + 1)) + ": a wire does not close up (edge #" +
+                 std::to_string(h / 2 + 1) + " ends where the next edge does not start)";
+        return std::nullopt;
+      }
+      he_loop[h] = li;
+      he_next[h] = n;
+      he_prev[n] = h;
+    }
+  }
+
+  // Free edges: link the unused half-edges into border cycles. A border half-edge h
+  // ends at v; its successor is the next border half-edge leaving v in v's rotation,
+  // found by turning from twin(h) through the faces around v (g -> twin(prev(g))).
+  std::vector<std::uint32_t> border_next(2 * ne, kNone);
+  for (std::uint32_t h = 0; h < 2 * ne; ++h) {
+    if (he_loop[h] != kNone) continue;
+    if (he_loop[h ^ 1u] == kNone) {
+      *error = "edge #" + std::to_string(h / 2 + 1) + " belongs to no face";
+      return std::nullopt;
+    }
+    std::uint32_t g = h ^ 1u;
+    std::size_t steps = 0;
+    while (he_loop[g] != kNone && steps++ <= 2 * ne) g = he_prev[g] ^ 1u;
+    if (he_loop[g] != kNone) {
+      *error = "the faces around vertex #" + std::to_string(target(h) + 1) + " do not form a fan (free edges cannot be followed)";
+      return std::nullopt;
+    }
+    border_next[h] = g;
+  }
+  std::vector<std::uint32_t> border_of(2 * ne, kNone);
+  std::size_t border_start = loops.size();
+  for (std::uint32_t h = 0; h < 2 * ne; ++h) {
+    if (border_next[h] == kNone || border_of[h] != kNone) continue;
+    LoopBuild lb{kNone, {}, kNone};
+    std::uint32_t li = std::uint32_t(loops.size());
+    for (std::uint32_t g = h; border_of[g] == kNone; g = border_next[g]) {
+      border_of[g] = li;
+      lb.hes.push_back(g);
+    }
+    if (lb.hes.front() != border_next[lb.hes.back()]) {
+      *error = "free edges around edge #" + std::to_string(h / 2 + 1) + " do not close into a cycle";
+      return std::nullopt;
+    }
+    for (std::size_t k = 0; k < lb.hes.size(); ++k) {
+      he_loop[lb.hes[k]] = li;
+      he_next[lb.hes[k]] = lb.hes[(k + 1) % lb.hes.size()];
+    }
+    loops.push_back(std::move(lb));
+  }
+  if (loops.size() > border_start)
+    warnings->push_back(std::to_string(loops.size() - border_start) + " border cycle(s) of free edges: the shell is open");
+
+  // Shells: faces connected across edges.
+  UnionFind uf(faces.size());
+  for (std::size_t e = 0; e < ne; ++e) {
+    std::uint32_t a = loops[he_loop[2 * e]].face, b = loops[he_loop[2 * e + 1]].face;
+    if (a != kNone && b != kNone) uf.unite(a, b);
+  }
+  std::map<std::uint32_t, std::uint32_t> shell_of_root;
+  std::vector<std::uint32_t> face_shell(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    auto [it, inserted] = shell_of_root.emplace(uf.find(std::uint32_t(f)), std::uint32_t(shell_of_root.size()));
+    face_shell[f] = it->second;
+  }
+  auto loop_shell = [&](std::uint32_t li) {
+    const LoopBuild& lb = loops[li];
+    if (lb.face != kNone) return face_shell[lb.face];
+    return face_shell[loops[he_loop[lb.hes.front() ^ 1u]].face];
+  };
+
+  // Genus per shell from Euler–Poincaré: V − E + F + B − R = 2(1 − g).
+  const std::size_t ns = shell_of_root.size();
+  std::vector<long> chi(ns, 0);
+  std::vector<std::uint32_t> vertex_shell(std::size_t(vertex_map.Extent()), kNone);
+  for (std::size_t e = 0; e < ne; ++e) {
+    std::uint32_t s = loop_shell(he_loop[2 * e]);
+    chi[s] -= 1;
+    vertex_shell[edge_from[e]] = vertex_shell[edge_to[e]] = s;
+  }
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    if (loops[li].lone != kNone) vertex_shell[loops[li].lone] = loop_shell(li);
+    if (loops[li].face == kNone) chi[loop_shell(li)] += 1;
+  }
+  for (std::uint32_t s : vertex_shell)
+    if (s != kNone) chi[s] += 1;
+  for (std::size_t f = 0; f < faces.size(); ++f) chi[face_shell[f]] += 1 - long(face_loops[f].size() - 1);
+  std::vector<std::uint32_t> genus(ns, 0);
+  for (std::size_t s = 0; s < ns; ++s) {
+    if (chi[s] > 2 || chi[s] % 2 != 0) {
+      *error = "shell " + std::to_string(s + 1) + " has Euler characteristic " + std::to_string(chi[s]) +
+               ", which no orientable surface has (inconsistent topology)";
+      return std::nullopt;
+    }
+    genus[s] = std::uint32_t(1 - chi[s] / 2);
+  }
+
+  // Describe and assemble (which runs the full topology check).
+  BodyDescription d;
+  for (std::size_t v = 0; v < vertex_shell.size(); ++v) {
+    if (vertex_shell[v] == kNone) continue;  // only on degenerated edges
+    d.vertices.push_back({std::uint32_t(v), vec(BRep_Tool::Pnt(TopoDS::Vertex(vertex_map(int(v + 1)))))});
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    EdgeDesc ed;
+    ed.id = std::uint32_t(e);
+    for (int side = 0; side < 2; ++side) {
+      std::uint32_t h = std::uint32_t(2 * e + side);
+      ed.he[side] = {he_origin[h], he_next[h], he_loop[h]};
+    }
+    ed.curve = edge_curve(TopoDS::Edge(edge_map(int(e + 1)).Oriented(TopAbs_FORWARD)), int(e + 1), warnings);
+    d.edges.push_back(std::move(ed));
+  }
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    LoopDesc ld;
+    ld.id = li;
+    if (loops[li].face != kNone) ld.face = loops[li].face;
+    if (loops[li].lone != kNone)
+      ld.lone = loops[li].lone;
+    else
+      ld.first = loops[li].hes.front();
+    d.loops.push_back(ld);
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    FaceDesc fd;
+    fd.id = std::uint32_t(f);
+    fd.shell = face_shell[f];
+    fd.loops = face_loops[f];
+    fd.surface = surf[f].surface;
+    // Outward normal = OpenCASCADE's surface normal for a FORWARD face, its opposite for a
+    // REVERSED one; ours agrees with OpenCASCADE's or not (left-handed frames).
+    bool forward = faces[f].Orientation() == TopAbs_FORWARD;
+    fd.same_sense = forward == surf[f].normal_agrees;
+    d.faces.push_back(std::move(fd));
+  }
+  for (std::size_t s = 0; s < ns; ++s) d.shells.push_back({std::uint32_t(s), genus[s]});
+  AssembleError ae;
+  std::optional<Body> body = assemble(d, &ae);
+  if (!body) {
+    *error = "the topology read is inconsistent: " + (ae.element.empty() ? "" : ae.element + ": ") + ae.message;
+    return std::nullopt;
+  }
+  return body;
+}
+
+}  // namespace kintsugi::io::occt

@@ -1,0 +1,347 @@
+// Body -> TopoDS_Shape (spec/exchange.md, "Export").
+//
+// Exact construction: one TopoDS_Vertex per vertex and one TopoDS_Edge per edge, shared
+// by the wires of both faces, so the OpenCASCADE shape has exactly our topology. What we
+// do not store — parameter-space curves, and the degenerated edges OpenCASCADE wants at
+// sphere poles and cone apexes — is added per wire by ShapeFix_Wire with every fix that
+// could change the topology switched off.
+#include "io/occt/convert.h"
+
+#include "geometry/surface.h"
+#include "geometry/types.h"
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepLib.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <ElCLib.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <Geom_ToroidalSurface.hxx>
+#include <Precision.hxx>
+#include <ShapeFix_Wire.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Ax3.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Elips.hxx>
+#include <gp_Lin.hxx>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace kintsugi::io::occt {
+
+namespace {
+
+using geo::Vec3;
+
+constexpr double kTol = 1e-7;  // Precision::Confusion(), OpenCASCADE's default
+
+gp_Pnt pnt(const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+gp_Dir dir(const Vec3& d) { return gp_Dir(d.x(), d.y(), d.z()); }
+gp_Ax3 ax3(const geo::Frame& f) { return gp_Ax3(pnt(f.origin), dir(f.z), dir(f.x)); }
+gp_Ax2 ax2(const geo::Frame& f) { return gp_Ax2(pnt(f.origin), dir(f.z), dir(f.x)); }
+
+// Our surfaces map onto right-handed gp_Ax3 frames with the same parametrisation, so
+// the OpenCASCADE surface normal is ours (spec/exchange.md). The one exception: a cone
+// with a negative half-angle is written with the axis flipped (STEP and OpenCASCADE use
+// a positive semi-angle); flipping z and y together keeps the frame right-handed and the
+// normal outward, so the sense is unchanged.
+Handle(Geom_Surface) to_geom(const geo::Surface& s) {
+  struct V {
+    Handle(Geom_Surface) operator()(const std::monostate&) const { return nullptr; }
+    Handle(Geom_Surface) operator()(const geo::Plane& p) const { return new Geom_Plane(ax3(p.frame)); }
+    Handle(Geom_Surface) operator()(const geo::Cylinder& c) const {
+      return new Geom_CylindricalSurface(ax3(c.frame), c.radius);
+    }
+    Handle(Geom_Surface) operator()(const geo::Cone& c) const {
+      if (c.half_angle >= 0) return new Geom_ConicalSurface(ax3(c.frame), c.half_angle, c.radius);
+      gp_Ax3 a(pnt(c.frame.origin), dir(-c.frame.z), dir(c.frame.x));
+      return new Geom_ConicalSurface(a, -c.half_angle, c.radius);
+    }
+    Handle(Geom_Surface) operator()(const geo::Sphere& s) const {
+      return new Geom_SphericalSurface(ax3(s.frame), s.radius);
+    }
+    Handle(Geom_Surface) operator()(const geo::Torus& t) const {
+      return new Geom_ToroidalSurface(ax3(t.frame), t.major_radius, t.minor_radius);
+    }
+  };
+  return std::visit(V{}, s);
+}
+
+// A 3D curve and the parameter range [t0, t1] of the edge from p0 to p1 along it.
+struct EdgeCurve {
+  Handle(Geom_Curve) curve;
+  double t0 = 0, t1 = 0;
+};
+
+// Moves t1 into (t0, t0 + 2π] on a periodic curve; a full turn when the ends coincide.
+void periodic_range(double t0, double* t1, bool closed) {
+  const double two_pi = 2 * M_PI;
+  if (closed) {
+    *t1 = t0 + two_pi;
+    return;
+  }
+  while (*t1 <= t0) *t1 += two_pi;
+  while (*t1 > t0 + two_pi) *t1 -= two_pi;
+}
+
+std::optional<EdgeCurve> to_geom(const geo::Curve& c, const Vec3& p0, const Vec3& p1, bool closed, std::string* why) {
+  EdgeCurve out;
+  if (const auto* l = std::get_if<geo::Line>(&c)) {
+    gp_Lin lin(pnt(l->origin), dir(l->direction));
+    out.t0 = ElCLib::Parameter(lin, pnt(p0));
+    out.t1 = ElCLib::Parameter(lin, pnt(p1));
+    if (closed || std::abs(out.t1 - out.t0) < kTol) return *why = "a line edge whose ends coincide", std::nullopt;
+    if (out.t1 < out.t0) {  // the line runs against the edge: write it the edge's way
+      lin.Reverse();
+      out.t0 = -out.t0;
+      out.t1 = -out.t1;
+    }
+    out.curve = new Geom_Line(lin);
+  } else if (const auto* ci = std::get_if<geo::Circle>(&c)) {
+    gp_Circ circ(ax2(ci->frame), ci->radius);
+    out.t0 = ElCLib::Parameter(circ, pnt(p0));
+    out.t1 = ElCLib::Parameter(circ, pnt(p1));
+    periodic_range(out.t0, &out.t1, closed);
+    out.curve = new Geom_Circle(circ);
+  } else if (const auto* e = std::get_if<geo::Ellipse>(&c)) {
+    geo::Frame f = e->frame;
+    double a = e->major_radius, b = e->minor_radius;
+    if (a < b) {  // gp_Elips wants the major axis along x
+      f.x = f.y();
+      std::swap(a, b);
+    }
+    gp_Elips el(ax2(f), a, b);
+    out.t0 = ElCLib::Parameter(el, pnt(p0));
+    out.t1 = ElCLib::Parameter(el, pnt(p1));
+    periodic_range(out.t0, &out.t1, closed);
+    out.curve = new Geom_Ellipse(el);
+  } else if (const auto* pl = std::get_if<geo::Polyline>(&c)) {
+    std::vector<Vec3> pts = pl->points;
+    if (pts.size() < 2) return *why = "a polyline with fewer than two points", std::nullopt;
+    if ((pts.front() - p0).norm() > (pts.back() - p0).norm() && !closed) std::reverse(pts.begin(), pts.end());
+    // Degree 1, knots at cumulative arc length: the polyline's own parametrisation.
+    std::vector<Vec3> uniq{pts.front()};
+    for (const Vec3& p : pts)
+      if ((p - uniq.back()).norm() > kTol) uniq.push_back(p);
+    if (uniq.size() < 2) return *why = "a polyline of coincident points", std::nullopt;
+    int n = int(uniq.size());
+    TColgp_Array1OfPnt poles(1, n);
+    TColStd_Array1OfReal knots(1, n);
+    TColStd_Array1OfInteger mults(1, n);
+    double s = 0;
+    for (int i = 0; i < n; ++i) {
+      if (i > 0) s += (uniq[i] - uniq[i - 1]).norm();
+      poles(i + 1) = pnt(uniq[i]);
+      knots(i + 1) = s;
+      mults(i + 1) = (i == 0 || i == n - 1) ? 2 : 1;
+    }
+    out.curve = new Geom_BSplineCurve(poles, knots, mults, 1);
+    out.t0 = 0;
+    out.t1 = s;
+  } else {
+    return *why = "no curve", std::nullopt;
+  }
+  return out;
+}
+
+std::string status_of(BRepBuilderAPI_EdgeError e) {
+  switch (e) {
+    case BRepBuilderAPI_EdgeDone: return "done";
+    case BRepBuilderAPI_PointProjectionFailed: return "a vertex does not project onto the curve";
+    case BRepBuilderAPI_ParameterOutOfRange: return "parameter out of range";
+    case BRepBuilderAPI_DifferentPointsOnClosedCurve: return "different points on a closed curve";
+    case BRepBuilderAPI_PointWithInfiniteParameter: return "a vertex at an infinite parameter";
+    case BRepBuilderAPI_DifferentsPointAndParameter: return "a vertex is not at its curve parameter";
+    case BRepBuilderAPI_LineThroughIdenticPoints: return "a line through identical points";
+  }
+  return "unknown error";
+}
+
+class Builder {
+ public:
+  explicit Builder(const Body& b) : b_(b) {}
+
+  std::optional<BuiltShape> run(std::string* error) {
+    out_.vertex.resize(b_.vertex_slots());
+    out_.edge.resize(b_.edge_slots());
+    out_.face.resize(b_.face_slots());
+    out_.loop_wire.resize(b_.loop_slots());
+    out_.shell.resize(b_.shell_slots());
+    out_.solid.resize(b_.shell_slots());
+    for (VertexH v : b_.vertices()) {
+      TopoDS_Vertex tv;
+      bb_.MakeVertex(tv, pnt(b_.point(v)), kTol);
+      out_.vertex[v.idx()] = tv;
+    }
+    for (EdgeH e : b_.edges())
+      if (!make_edge(e, error)) return std::nullopt;
+    for (FaceH f : b_.faces())
+      if (!make_face(f, error)) return std::nullopt;
+    make_shells();
+    return std::move(out_);
+  }
+
+ private:
+  bool make_edge(EdgeH e, std::string* error) {
+    HalfedgeH h = halfedge_of(e, 0);
+    VertexH v0 = b_.origin(h), v1 = b_.target(h);
+    std::string why;
+    std::optional<EdgeCurve> c = to_geom(b_.curve(e), b_.point(v0), b_.point(v1), v0 == v1, &why);
+    if (!c) return *error = "edge " + e.str() + ": " + why, false;
+    TopoDS_Vertex tv0 = TopoDS::Vertex(out_.vertex[v0.idx()]), tv1 = TopoDS::Vertex(out_.vertex[v1.idx()]);
+    // The vertex tolerance covers the distance between the vertex and the curve's end,
+    // so a body whose geometry is slightly off is still written with its topology.
+    double d0 = c->curve->Value(c->t0).Distance(pnt(b_.point(v0)));
+    double d1 = c->curve->Value(c->t1).Distance(pnt(b_.point(v1)));
+    if (d0 > kTol) bb_.UpdateVertex(tv0, std::max(BRep_Tool::Tolerance(tv0), 1.001 * d0));
+    if (d1 > kTol) bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), 1.001 * d1));
+    BRepBuilderAPI_MakeEdge me(c->curve, tv0, tv1, c->t0, c->t1);
+    if (!me.IsDone()) return *error = "edge " + e.str() + ": OpenCASCADE refused it: " + status_of(me.Error()), false;
+    out_.edge[e.idx()] = me.Edge();
+    return true;
+  }
+
+  // A wire per loop, in the face's own (surface) sense: our loops run counter-clockwise
+  // about the outward normal; when that is the reverse of the surface normal the wire
+  // is written backwards and the face REVERSED, so exploring the face gives our order.
+  TopoDS_Wire make_wire(LoopH l, bool same_sense) {
+    std::vector<HalfedgeH> hs = b_.loop_halfedges(l);
+    if (!same_sense) std::reverse(hs.begin(), hs.end());
+    TopoDS_Wire w;
+    bb_.MakeWire(w);
+    for (HalfedgeH h : hs) {
+      bool forward = (h.idx() & 1u) == 0;
+      if (!same_sense) forward = !forward;
+      const TopoDS_Shape& e = out_.edge[edge_of(h).idx()];
+      bb_.Add(w, e.Oriented(forward ? TopAbs_FORWARD : TopAbs_REVERSED));
+    }
+    w.Closed(true);
+    return w;
+  }
+
+  bool make_face(FaceH f, std::string* error) {
+    const geo::Surface& s = b_.surface(f);
+    if (std::holds_alternative<std::monostate>(s)) return *error = "face " + f.str() + ": no surface", false;
+    if (std::string p = geo::surface_problem(s); !p.empty()) return *error = "face " + f.str() + ": " + p, false;
+    Handle(Geom_Surface) gs = to_geom(s);
+    bool sense = b_.same_sense(f);
+    TopoDS_Face tf;
+    bb_.MakeFace(tf, gs, kTol);
+    std::vector<std::pair<LoopH, TopoDS_Wire>> wires;
+    for (LoopH l : b_.loops_of(f)) {
+      if (b_.is_lone(l)) {
+        // A lone vertex: OpenCASCADE has no loop of a single vertex in a face; the
+        // vertex is added to the face as an INTERNAL sub-shape.
+        bb_.Add(tf, out_.vertex[b_.lone_vertex(l).idx()].Oriented(TopAbs_INTERNAL));
+        continue;
+      }
+      wires.emplace_back(l, make_wire(l, sense));
+    }
+    // pcurves (and pole edges) per wire, in the context of the face without any wire.
+    for (auto& [l, w] : wires) {
+      ShapeFix_Wire fix(w, tf, kTol);
+      fix.ModifyTopologyMode() = Standard_False;
+      fix.FixReorderMode() = 0;
+      fix.FixSmallMode() = 0;
+      fix.FixConnectedMode() = 0;
+      fix.FixSelfIntersectionMode() = 0;
+      fix.FixLackingMode() = 0;
+      fix.FixGaps3dMode() = 0;
+      fix.FixGaps2dMode() = 0;
+      fix.FixNotchedEdgesMode() = 0;
+      fix.FixTailMode() = 0;
+      // Tolerances stay as built (1e-7): SameParameter would widen an edge's tolerance
+      // to cover a curve that misses its surface, and hide from BRepCheck exactly the
+      // inconsistency occt_check is there to find.
+      fix.FixSameParameterMode() = 0;
+      fix.FixVertexToleranceMode() = 0;
+      fix.FixEdgeCurves();
+      fix.FixDegenerated();
+      w = fix.Wire();
+    }
+    for (auto& [l, w] : wires) {
+      bb_.Add(tf, w);
+      out_.loop_wire[l.idx()] = w;
+    }
+    if (!sense) tf.Orientation(TopAbs_REVERSED);
+    out_.face[f.idx()] = tf;
+    return true;
+  }
+
+  void make_shells() {
+    std::vector<std::vector<FaceH>> faces(b_.shell_slots());
+    for (FaceH f : b_.faces()) faces[b_.shell(f).idx()].push_back(f);
+    std::vector<std::uint8_t> open(b_.shell_slots(), 0);
+    for (LoopH l : b_.border_cycles()) open[b_.shell(l).idx()] = 1;
+    std::vector<TopoDS_Shape> tops;
+    for (ShellH s : b_.shells()) {
+      TopoDS_Shell ts;
+      bb_.MakeShell(ts);
+      for (FaceH f : faces[s.idx()]) bb_.Add(ts, out_.face[f.idx()]);
+      ts.Closed(!open[s.idx()]);
+      out_.shell[s.idx()] = ts;
+      if (open[s.idx()]) {
+        tops.push_back(ts);
+        continue;
+      }
+      TopoDS_Solid so;
+      bb_.MakeSolid(so);
+      bb_.Add(so, ts);
+      out_.solid[s.idx()] = so;
+      tops.push_back(so);
+    }
+    if (tops.size() == 1) {
+      out_.shape = tops.front();
+    } else {
+      TopoDS_Compound c;
+      bb_.MakeCompound(c);
+      for (const TopoDS_Shape& t : tops) bb_.Add(c, t);
+      out_.shape = c;
+    }
+    BRepLib::UpdateTolerances(out_.shape, Standard_False);
+  }
+
+  const Body& b_;
+  BRep_Builder bb_;
+  BuiltShape out_;
+};
+
+}  // namespace
+
+std::optional<BuiltShape> to_shape(const Body& b, std::string* error) {
+  std::string local;
+  if (!error) error = &local;
+  try {
+    return Builder(b).run(error);
+  } catch (const Standard_Failure& e) {
+    *error = std::string("OpenCASCADE failed while building the shape: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    *error = std::string("building the shape failed: ") + e.what();
+  }
+  return std::nullopt;
+}
+
+}  // namespace kintsugi::io::occt

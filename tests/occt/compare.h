@@ -1,0 +1,34 @@
+// Test helpers for the exchange tests: geometric body comparison up to renumbering,
+// rigid motions, and temporary files.
+#pragma once
+
+#include "io/occt/exchange.h"
+#include "kernel/body.h"
+
+#include <Eigen/Geometry>
+
+#include <filesystem>
+#include <string>
+
+namespace kintsugi::test {
+
+// Empty when `b` is `a` up to renumbering: equal counts, faces matched one to one by
+// their surfaces (sample points of a's surface on b's within tol, outward normals
+// agreeing), the same face–face adjacency (as a multiset of face pairs per edge), every
+// vertex of a at a vertex of b, and points along every edge of a on an edge of b
+// between the same faces. Otherwise, the first difference found.
+std::string compare_bodies(const Body& a, const Body& b, double tol = 1e-7);
+
+// Applies x -> r·x + t to every point, curve and surface frame.
+void transform(Body& b, const Eigen::Matrix3d& r, const Eigen::Vector3d& t);
+
+// A fresh file path in a per-process temporary directory.
+std::string temp_path(const std::string& name);
+
+// Writes `text` to a temporary file and returns its path.
+std::string temp_file(const std::string& name, const std::string& text);
+
+// Exports, imports and returns the imported body (fails the test on error).
+Body round_trip(const Body& b, io::CadFormat f, const std::string& name);
+
+}  // namespace kintsugi::test

@@ -1,0 +1,2 @@
+// Filled in by a later commit of issue 8.
+#include <gtest/gtest.h>
