@@ -1,0 +1,285 @@
+// The defect injector: picks a suitable place for a defect type (or takes the one named
+// by `at`), makes the defect inside a transaction, and keeps it only if the body is
+// still valid and consistent (spec/defects.md).
+#include "geometry/curve.h"
+#include "geometry/tolerance.h"
+#include "invariants/topology_check.h"
+#include "kernel/transaction.h"
+#include "zoo/defects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace kintsugi::zoo {
+
+namespace {
+
+bool straight(const Body& b, EdgeH e) { return std::holds_alternative<geo::Line>(b.curve(e)); }
+
+double edge_len(const Body& b, EdgeH e) {
+  HalfedgeH h = halfedge_of(e, 0);
+  const geo::Curve& c = b.curve(e);
+  Vec3 p = b.point(b.origin(h)), q = b.point(b.target(h));
+  if (const auto* circle = std::get_if<geo::Circle>(&c)) {
+    geo::ParameterRange r = geo::parameter_range(c, p, q, 1e-12 * circle->radius);
+    return (r.t1 - r.t0) * circle->radius;
+  }
+  return (q - p).norm();
+}
+
+double model_diagonal(const Body& b) {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (VertexH v : b.vertices()) lo = lo.cwiseMin(b.point(v)), hi = hi.cwiseMax(b.point(v));
+  return b.vertices().empty() ? 0.0 : (hi - lo).norm();
+}
+
+// A planar face with a convex outer loop and no rings, all edges straight.
+bool convex_planar(const Body& b, FaceH f) {
+  if (!plane_of(b, f) || b.next_in_face(b.outer_loop(f)).valid() || b.is_lone(b.outer_loop(f))) return false;
+  Vec3 n = outward_normal(b, f);
+  std::vector<HalfedgeH> hs = b.loop_halfedges(b.outer_loop(f));
+  if (hs.size() < 3) return false;
+  for (std::size_t i = 0; i < hs.size(); ++i) {
+    if (!straight(b, edge_of(hs[i]))) return false;
+    Vec3 d1 = b.point(b.target(hs[i])) - b.point(b.origin(hs[i]));
+    HalfedgeH nx = hs[(i + 1) % hs.size()];
+    Vec3 d2 = b.point(b.target(nx)) - b.point(b.origin(nx));
+    if (!(n.dot(d1.cross(d2)) > 1e-12 * d1.norm() * d2.norm())) return false;
+  }
+  return true;
+}
+
+// Distance from x to the nearest edge line of f's outer loop (x inside a convex face).
+double inset(const Body& b, FaceH f, const Vec3& x) {
+  double best = 1e300;
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) {
+    Vec3 p = b.point(b.origin(h)), d = (b.point(b.target(h)) - p).normalized();
+    Vec3 r = x - p;
+    best = std::min(best, (r - r.dot(d) * d).norm());
+  }
+  return best;
+}
+
+Vec3 centroid(const Body& b, FaceH f) {
+  Vec3 c = Vec3::Zero();
+  std::vector<VertexH> vs = b.loop_vertices(b.outer_loop(f));
+  for (VertexH v : vs) c += b.point(v);
+  return c / double(vs.size());
+}
+
+struct Site {
+  std::function<KnownDefect(Body&)> make;
+  std::string where;
+};
+
+template <class H>
+std::optional<H> parse_handle(const std::string& s, char prefix) {
+  if (s.size() < 2 || s[0] != prefix) return std::nullopt;
+  std::uint64_t v = 0;
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    if (s[i] < '0' || s[i] > '9' || v > 0xffffffffull) return std::nullopt;
+    v = v * 10 + std::uint64_t(s[i] - '0');
+  }
+  if (v >= 0xffffffffull) return std::nullopt;
+  return H(static_cast<typename H::Index>(v));
+}
+
+// All places in b where a defect of type t fits, each with its maker; sizes drawn from rng.
+std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, const std::optional<std::string>& at,
+                        std::string* why) {
+  std::vector<FaceH> faces = b.faces();
+  std::vector<EdgeH> edges = b.edges();
+  std::vector<VertexH> vertices = b.vertices();
+  if (at) {
+    // Restrict the candidates to the named element (or, for a face, its edges and vertices).
+    faces.clear(), edges.clear(), vertices.clear();
+    if (auto f = parse_handle<FaceH>(*at, 'f'); f && b.alive(*f)) {
+      faces = {*f};
+      for (LoopH l : b.loops_of(*f))
+        for (HalfedgeH h : b.loop_halfedges(l)) edges.push_back(edge_of(h)), vertices.push_back(b.origin(h));
+    } else if (auto e = parse_handle<EdgeH>(*at, 'e'); e && b.alive(*e)) {
+      edges = {*e};
+    } else if (auto v = parse_handle<VertexH>(*at, 'v'); v && b.alive(*v)) {
+      vertices = {*v};
+    } else {
+      *why = "'" + *at + "' names no live face (fN), edge (eN) or vertex (vN) of the model";
+      return {};
+    }
+  }
+  std::vector<Site> out;
+  auto u = [&] { return rng.uniform(0.3, 0.8); };
+  switch (t) {
+    case ProblemType::face_gap:
+      for (FaceH f : faces) {
+        if (!convex_planar(b, f)) continue;
+        Vec3 c = centroid(b, f);
+        double r = 0.5 * tol * u();
+        if (inset(b, f, c) < 4 * r) continue;
+        int k = 3 + int(rng.below(4));
+        out.push_back({[=](Body& x) { return make::face_gap(x, f, c, r, k); }, f.str()});
+      }
+      break;
+    case ProblemType::edge_gap:
+      for (EdgeH e : edges) {
+        HalfedgeH h = halfedge_of(e, 0);
+        FaceH f1 = b.face(h), f2 = b.face(twin(h));
+        if (!straight(b, e) || !f1.valid() || !f2.valid() || f1 == f2 || !convex_planar(b, f1) || !convex_planar(b, f2))
+          continue;
+        double len = edge_len(b, e), g = tol * u(), depth = 0.5 * tol * u();
+        if (len < 4 * g || inset(b, f1, centroid(b, f1)) < 4 * depth || inset(b, f2, centroid(b, f2)) < 4 * depth) continue;
+        double s0 = rng.uniform(0.3, 0.7) * (len - g);
+        int per_side = 1 + int(rng.below(3));
+        out.push_back({[=](Body& x) { return make::edge_gap(x, h, s0, s0 + g, depth, per_side); }, e.str()});
+      }
+      break;
+    case ProblemType::multi_face_gap:
+    case ProblemType::small_face:
+    case ProblemType::small_face_chain:
+      for (VertexH v : vertices) {
+        if (!convex_corner_axis(b, v)) continue;
+        std::uint64_t seed = rng.raw();
+        double scale = u();
+        if (t == ProblemType::multi_face_gap)
+          out.push_back({[=](Body& x) { return make::corner_gap(x, v, 0.3 * tol * scale); }, v.str()});
+        else if (t == ProblemType::small_face)
+          out.push_back({[=](Body& x) {
+                           Rng r(seed);
+                           return make::small_face(x, v, 0.5 * tol * tol * scale, &r);
+                         },
+                         v.str()});
+        else
+          out.push_back({[=](Body& x) {
+                           Rng r(seed);
+                           return make::small_face_chain(x, v, 0.25 * tol * scale, r);
+                         },
+                         v.str()});
+      }
+      break;
+    case ProblemType::short_edge:
+      for (VertexH v : vertices) {
+        if (b.degree(v) < 4 || !convex_corner_axis(b, v)) continue;
+        std::uint64_t seed = rng.raw();
+        double len = tol * u();
+        out.push_back({[=](Body& x) {
+                         Rng r(seed);
+                         try {
+                           return make::apex_short_edge(x, v, len, r);
+                         } catch (const Unsuitable&) {
+                         }
+                         for (HalfedgeH o : x.outgoing(v))
+                           if (x.loop_halfedges(x.loop(o)).size() == 3) return make::tilt_short_edge(x, v, x.face(o), len);
+                         throw Unsuitable(v.str() + " has no triangular face");
+                       },
+                       v.str()});
+      }
+      break;
+    case ProblemType::sliver_face:
+      for (EdgeH e : edges) {
+        HalfedgeH h = halfedge_of(e, 0);
+        if (!straight(b, e) || !b.face(h).valid() || !b.face(twin(h)).valid()) continue;
+        if (b.degree(b.origin(h)) != 3 || b.degree(b.target(h)) != 3) continue;
+        double wa = 0.5 * tol * u(), wb = 0.5 * tol * u();
+        if (edge_len(b, e) < 10 * tol) continue;  // a sliver is long: area / diagonal < tol
+        FaceH a = b.face(h);
+        out.push_back({[=](Body& x) { return make::chamfer(x, e, a, wa, wb); }, e.str()});
+      }
+      break;
+    case ProblemType::same_geometry_faces:
+      for (FaceH f : faces) {
+        if (!convex_planar(b, f)) continue;
+        std::vector<HalfedgeH> hs = b.loop_halfedges(b.outer_loop(f));
+        if (hs.size() < 4) continue;
+        bool corners3 = true;
+        for (HalfedgeH h : hs) corners3 = corners3 && b.degree(b.origin(h)) == 3;
+        if (!corners3) continue;
+        std::size_t i = rng.below(hs.size()), j = (i + 2 + rng.below(hs.size() - 3)) % hs.size();
+        EdgeH e1 = edge_of(hs[i]), e2 = edge_of(hs[j]);
+        double dev = tol * u();
+        out.push_back({[=](Body& x) { return make::split_and_tilt(x, f, e1, e2, dev); }, f.str()});
+      }
+      break;
+    case ProblemType::mergeable_edges:
+      for (EdgeH e : edges) {
+        const geo::Curve& c = b.curve(e);
+        if (!std::holds_alternative<geo::Line>(c) && !std::holds_alternative<geo::Circle>(c)) continue;
+        if (edge_len(b, e) < 4 * tol) continue;
+        double at_ = rng.uniform(0.3, 0.7);
+        out.push_back({[=](Body& x) { return make::split_edge(x, halfedge_of(e, 0), at_); }, e.str()});
+      }
+      break;
+    case ProblemType::short_edge_chain:
+      for (EdgeH e : edges) {
+        const geo::Curve& c = b.curve(e);
+        if (!std::holds_alternative<geo::Line>(c) && !std::holds_alternative<geo::Circle>(c)) continue;
+        double len = edge_len(b, e);
+        std::vector<double> pieces(2 + rng.below(3));
+        double total = 0;
+        for (double& p : pieces) total += (p = tol * u());
+        if (len < total + 4 * tol) continue;
+        double start = rng.uniform(0.3, 0.7) * (len - total);
+        out.push_back({[=](Body& x) { return make::cut_edge(x, halfedge_of(e, 0), start, pieces); }, e.str()});
+      }
+      break;
+    case ProblemType::pinched_face:
+      for (FaceH f : faces) {
+        if (!convex_planar(b, f)) continue;
+        double room = inset(b, f, centroid(b, f));
+        for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) {
+          double len = edge_len(b, edge_of(h));
+          double offset = tol * u(), w = std::min(0.3 * room, 0.3 * len);
+          if (w < 2 * tol) continue;
+          double s0 = 0.35 * len, s1 = 0.65 * len;
+          // The block must stay inside f: its far corners are checked against every edge.
+          Vec3 p = b.point(b.origin(h)), d = (b.point(b.target(h)) - p).normalized();
+          Vec3 uu = outward_normal(b, f).cross(d);
+          Vec3 c0 = p + s0 * d + (offset + w) * uu, c1 = p + s1 * d + (offset + w) * uu;
+          if (inset(b, f, c0) < tol || inset(b, f, c1) < tol) continue;
+          out.push_back({[=](Body& x) { return make::boss_pinch(x, h, s0, s1, offset, w, w); }, f.str()});
+        }
+      }
+      break;
+  }
+  if (out.empty() && why->empty())
+    *why = std::string("no place in the model suits a ") + problem_name(t) + " of size below the tolerance " +
+           std::to_string(tol) + (at ? " at " + *at : std::string());
+  return out;
+}
+
+}  // namespace
+
+std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const std::optional<std::string>& at,
+                               double tolerance, std::string* error) {
+  std::string why;
+  auto fail = [&](const std::string& m) -> std::optional<Injected> {
+    if (error) *error = m;
+    return std::nullopt;
+  };
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) return fail("the tolerance must be a positive number");
+  Rng rng(seed);
+  std::vector<Site> candidates = sites(b, t, tolerance, rng, at, &why);
+  // Try the candidates in a random order; keep the first that leaves a valid body.
+  for (std::size_t i = candidates.size(); i > 1; --i) std::swap(candidates[i - 1], candidates[rng.below(i)]);
+  geo::Tolerances tols = geo::Tolerances::for_model(tolerance, model_diagonal(b));
+  std::string last;
+  for (const Site& s : candidates) {
+    Transaction tx(b);
+    try {
+      KnownDefect d = s.make(b);
+      std::vector<Violation> bad = check_topology(b);
+      std::vector<std::string> off = geometry_offences(b, tols.precision);
+      if (bad.empty() && off.empty()) {
+        tx.commit();
+        return Injected{d, std::string(problem_name(t)) + " at " + s.where + " (size " + std::to_string(d.size) + ")"};
+      }
+      last = s.where + ": " + (bad.empty() ? off[0] : to_string(bad[0]));
+    } catch (const std::exception& e) {
+      last = s.where + ": " + e.what();
+    }
+    tx.rollback();
+  }
+  if (!candidates.empty()) why = "no place suits a " + std::string(problem_name(t)) + " (last tried " + last + ")";
+  return fail(why);
+}
+
+}  // namespace kintsugi::zoo
