@@ -167,7 +167,7 @@ KnownDefect corner_gap(Body& b, VertexH v, double depth) {
   Truncation t = truncate_vertex(b, v, [&](HalfedgeH o) {
     Vec3 d = dir_of(b, o);
     double s = depth / -axis->dot(d);
-    if (s > 0.3 * (b.point(b.target(o)) - p).norm()) throw Unsuitable("the corner gap does not fit on " + edge_of(o).str());
+    if (s > 0.45 * (b.point(b.target(o)) - p).norm()) throw Unsuitable("the corner gap does not fit on " + edge_of(o).str());
     return Vec3(p + s * d);
   });
   std::vector<Vec3> pts;

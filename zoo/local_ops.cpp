@@ -209,10 +209,27 @@ std::vector<FaceH> raise_pyramid(Body& b, FaceH g, const Vec3& apex) {
     back = m.b;
     sides.push_back(m.face);
   }
-  sides.push_back(b.face(back));
+  sides.push_back(g);  // what is left of the base is the last side
   for (FaceH f : sides) fit_plane(b, f);
   refit_lines(b, {s.vertex});
   return sides;
+}
+
+FaceH cut_off(Body& b, HalfedgeH m, const std::vector<Vec3>& pts) {
+  FaceH f = b.face(m);
+  Corner at = Corner::before(m);
+  HalfedgeH back;
+  std::vector<VertexH> made{b.origin(m), b.target(m)};
+  for (const Vec3& p : pts) {
+    MevResult s = must(euler::mev(b, at, p), "mev (cut off)");
+    back = s.y;
+    at = Corner::before(back);
+    made.push_back(s.vertex);
+  }
+  MefResult r = must(euler::mef(b, Corner::before(back), Corner::before(b.next(m))), "mef (cut off)");
+  b.set_surface(r.face, b.surface(f), b.same_sense(f));
+  refit_lines(b, made);
+  return r.face;
 }
 
 Truncation truncate_vertex(Body& b, VertexH v, const std::function<Vec3(HalfedgeH)>& where) {

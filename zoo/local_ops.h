@@ -72,6 +72,10 @@ FaceH extrude_disc(Body& b, FaceH g, const Vec3& d, double radius, const Vec3& c
 // of the side faces).
 std::vector<FaceH> raise_pyramid(Body& b, FaceH g, const Vec3& apex);
 
+// Cuts a new face off face(m): a path of straight edges from origin(m) through pts to
+// target(m), inside face(m). The new face (m's side, with face(m)'s surface) is returned.
+FaceH cut_off(Body& b, HalfedgeH m, const std::vector<Vec3>& pts);
+
 // Replaces vertex v by a face: every edge at v is cut at where(o) (o the half-edge
 // leaving v along it) and the cut points are joined in each face. Returns the new face
 // (no surface set) and the cut vertices in rotation order of the outgoing half-edges.
