@@ -2,6 +2,8 @@
 #include "apps/commands.h"
 #include "apps/model_files.h"
 #include "apps/report_json.h"
+#include "apps/tolerance_choice.h"
+#include "invariants/geometry_check.h"
 #include "invariants/topology_check.h"
 #ifdef KINTSUGI_HAVE_OCCT
 #include "io/occt/exchange.h"
@@ -17,8 +19,14 @@ const char* kHelp =
     "Loads FILE and runs the full invariant check: twin/next/prev, closed loops, vertex\n"
     "rotations, face and shell ownership, connected shells, Euler-Poincare per shell.\n"
     "Prints the counts (vertices, edges, faces, loops, shells, border cycles) and every\n"
-    "violation.\n\n"
-    "  --json   one JSON document: {\"valid\", \"counts\", \"violations\"}\n"
+    "violation. Then the geometric consistency check: every vertex on its edges' curves\n"
+    "and its faces' surfaces, every edge on both faces' surfaces, planar faces turning the\n"
+    "right way, within the modelling precision (1e-6 x the tolerance: --tol, else\n"
+    "meta.tolerance, else 1e-3 x the model size); the largest deviation is reported with\n"
+    "the elements it belongs to.\n\n"
+    "  --json   one JSON document: {\"valid\", \"counts\", \"violations\", \"max_deviation\",\n"
+    "           \"max_deviation_elements\", \"precision\"}\n"
+    "  --tol T  the length tolerance the precision derives from\n"
     "  --occt   also convert to OpenCASCADE and report BRepCheck_Analyzer's verdict\n\n"
     "Exit: 0 valid, 1 invalid, 2 unreadable input or bad usage.\n";
 }
@@ -26,7 +34,7 @@ const char* kHelp =
 int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args;
   std::string error;
-  if (!args.parse(argv, {}, {"--json", "--occt", "--help"}, &error)) {
+  if (!args.parse(argv, {"--tol"}, {"--json", "--occt", "--help"}, &error)) {
     err << "kintsugi check: " << error << "\n" << kHelp;
     return kExitBadInput;
   }
@@ -50,8 +58,24 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     err << "kintsugi check: " << error << "\n";
     return kExitBadInput;
   }
+  auto given = args.number("--tol", 0, &error);
+  if (!given || (args.has("--tol") && *given <= 0)) {
+    err << "kintsugi check: " << (error.empty() ? "--tol must be positive" : error) << "\n";
+    return kExitBadInput;
+  }
+  auto choice = choose_tolerance(*model, args.has("--tol") ? given : std::nullopt, &error);
+  if (!choice) {
+    err << "kintsugi check: " << error << "\n";
+    return kExitBadInput;
+  }
   const Body& b = model->body;
   std::vector<Violation> violations = check_topology(b);
+  GeometryReport geometry;
+  // Geometry is only meaningful on a topologically valid body (walks need closed loops).
+  if (violations.empty()) {
+    geometry = check_geometry(b, choice->tol.precision);
+    violations.insert(violations.end(), geometry.violations.begin(), geometry.violations.end());
+  }
   bool valid = violations.empty();
   nlohmann::json occt;
 #ifdef KINTSUGI_HAVE_OCCT
@@ -67,12 +91,19 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     j["counts"] = counts_json(c);
     j["violations"] = nlohmann::json::array();
     for (const auto& v : violations) j["violations"].push_back(violation_json(v));
+    j["max_deviation"] = geometry.max_deviation;
+    j["max_deviation_elements"] = geometry.max_elements;
+    j["precision"] = choice->tol.precision;
+    j["tolerance_source"] = choice->source;
     if (!occt.is_null()) j["occt"] = occt;
     out << j.dump(2) << "\n";
   } else {
     out << path << ": " << (valid ? "valid" : "INVALID") << "\n"
         << "  vertices " << c.vertices << ", edges " << c.edges << ", faces " << c.faces << ", loops " << c.loops
         << ", shells " << c.shells << ", border cycles " << c.border_cycles << "\n";
+    out << "  largest geometric deviation " << geometry.max_deviation;
+    for (const auto& e : geometry.max_elements) out << " " << e;
+    out << " (precision " << choice->tol.precision << ", from " << choice->source << ")\n";
     for (const auto& v : violations) out << "  violation: " << to_string(v) << "\n";
     if (!occt.is_null()) {
       out << "  OpenCASCADE BRepCheck: " << (occt["valid"].get<bool>() ? "valid" : "INVALID") << "\n";

@@ -22,5 +22,7 @@ const std::vector<Command>& commands();
 
 int cmd_generate(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_check(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_inject(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_measure(const std::vector<std::string>&, std::ostream&, std::ostream&);
 
 }  // namespace kintsugi::cli

@@ -1,6 +1,7 @@
 #include "apps/generators.h"
 
 #include "kernel/builders.h"
+#include "zoo/zoo.h"
 
 #include <stdexcept>
 
@@ -26,6 +27,23 @@ Model plain(Body b) {
   Model m;
   m.body = std::move(b);
   return m;
+}
+
+Model from_zoo(zoo::ZooModel z) {
+  Model m;
+  m.body = std::move(z.body);
+  m.meta = z.meta();
+  return m;
+}
+
+// paper-1 .. paper-10: the paper's test objects (section 6.1).
+Generator paper(int n) {
+  return {"paper-" + std::to_string(n),
+          "  [--clean]   the paper's test object " + std::to_string(n) +
+              " with its defects in meta.defects; --clean: the model it should become",
+          {},
+          {"--clean"},
+          [n](const Args& a) { return from_zoo(zoo::paper_object(n, a.has("--clean"))); }};
 }
 
 }  // namespace
@@ -59,8 +77,23 @@ const std::vector<Generator>& generators() {
        [](const Args& a) {
          return plain(build::grid_box(std::size_t(whole(a, "--faces", 600, 6, 10'000'000)), num(a, "--size", 1)));
        }},
+      {"family",
+       "  --faces N (10..10000000, default 1000) --defect-rate R (0..1, default 0.1) --seed S (default 1)\n"
+       "  a plate with a k x k grid of blocks, pyramids and cylindrical bosses, R x (features) defects injected",
+       {"--faces", "--defect-rate", "--seed"}, {},
+       [](const Args& a) {
+         double rate = num(a, "--defect-rate", 0.1);
+         if (!(rate >= 0 && rate <= 1)) throw std::invalid_argument("--defect-rate must be between 0 and 1");
+         return from_zoo(zoo::family(std::size_t(whole(a, "--faces", 1000, 10, 10'000'000)), rate,
+                                     std::uint64_t(whole(a, "--seed", 1, 0, (1LL << 62) + ((1LL << 62) - 1)))));
+       }},
   };
-  return table;
+  static const std::vector<Generator> all = [] {
+    std::vector<Generator> v = table;
+    for (int n = 1; n <= 10; ++n) v.push_back(paper(n));
+    return v;
+  }();
+  return all;
 }
 
 }  // namespace kintsugi::cli

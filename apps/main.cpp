@@ -11,6 +11,8 @@ const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"generate", "write a built-in model", cmd_generate},
       {"check", "check a model's topology and geometry", cmd_check},
+      {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
+      {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
   };
   return table;
 }

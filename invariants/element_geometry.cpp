@@ -1,0 +1,93 @@
+#include "invariants/element_geometry.h"
+
+#include "geometry/curve.h"
+#include "geometry/distance.h"
+
+#include <variant>
+
+namespace kintsugi {
+
+std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chordal) {
+  const geo::Vec3& p0 = b.point(b.origin(h));
+  const geo::Vec3& p1 = b.point(b.target(h));
+  const geo::Curve& c = b.curve(edge_of(h));
+  if (std::holds_alternative<std::monostate>(c) || std::holds_alternative<geo::Line>(c)) return {p0, p1};
+  // The curve runs along half-edge 2e: sample it from its start to its end, then reverse
+  // for the other half-edge. A self-loop edge covers the full period.
+  bool forward = (h.idx() & 1u) == 0;
+  const geo::Vec3& s = forward ? p0 : p1;
+  const geo::Vec3& t = forward ? p1 : p0;
+  double coincide = (b.origin(h) == b.target(h)) ? std::max(chordal, 1e-300) : 0.0;
+  geo::ParameterRange r = geo::parameter_range(c, s, t, coincide);
+  std::vector<geo::Vec3> pts = geo::sample_curve(c, r.t0, r.t1, std::max(chordal, 1e-300));
+  if (pts.size() < 2) return {p0, p1};
+  // Pin the ends to the vertices: the polyline is the edge, whatever the projection did.
+  pts.front() = s;
+  pts.back() = t;
+  if (!forward) std::reverse(pts.begin(), pts.end());
+  return pts;
+}
+
+double edge_length(const Body& b, EdgeH e) {
+  HalfedgeH h = halfedge_of(e, 0);
+  const geo::Curve& c = b.curve(e);
+  const geo::Vec3& p0 = b.point(b.origin(h));
+  const geo::Vec3& p1 = b.point(b.target(h));
+  if (std::holds_alternative<std::monostate>(c) || std::holds_alternative<geo::Line>(c)) return (p1 - p0).norm();
+  double coincide = (b.origin(h) == b.target(h)) ? 1e-12 * (1 + p0.norm()) : 0.0;
+  geo::ParameterRange r = geo::parameter_range(c, p0, p1, coincide);
+  return geo::arc_length(c, r.t0, r.t1);
+}
+
+std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal) {
+  std::vector<std::vector<geo::Vec3>> loops;
+  for (LoopH l : b.loops_of(f)) {
+    std::vector<geo::Vec3> pts;
+    if (b.is_lone(l)) {
+      pts.push_back(b.point(b.lone_vertex(l)));
+    } else {
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
+        pts.insert(pts.end(), seg.begin(), seg.end() - 1);  // the end is the next one's start
+      }
+    }
+    loops.push_back(std::move(pts));
+  }
+  return loops;
+}
+
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal) {
+  geo::AreaOptions o;
+  o.reversed = !b.same_sense(f);
+  return geo::measure_region(b.surface(f), face_boundary(b, f, chordal), o);
+}
+
+double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal) {
+  return geo::point_polyline(b.point(v), halfedge_polyline(b, halfedge_of(e, 0), chordal)).distance;
+}
+
+double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal) {
+  return geo::polyline_polyline(halfedge_polyline(b, halfedge_of(e1, 0), chordal),
+                                halfedge_polyline(b, halfedge_of(e2, 0), chordal))
+      .distance;
+}
+
+geo::Box body_bounds(const Body& b) {
+  geo::Box box;
+  for (VertexH v : b.vertices()) box.add(b.point(v));
+  // Curved edges bulge beyond their vertices (a circle has one vertex): sample them coarsely.
+  double size = box.empty() ? 1.0 : std::max(box.diagonal(), 1e-300);
+  for (EdgeH e : b.edges()) {
+    const geo::Curve& c = b.curve(e);
+    if (std::holds_alternative<geo::Line>(c) || std::holds_alternative<std::monostate>(c)) continue;
+    for (const geo::Vec3& p : halfedge_polyline(b, halfedge_of(e, 0), 1e-3 * size)) box.add(p);
+  }
+  return box;
+}
+
+double model_size(const Body& b) {
+  geo::Box box = body_bounds(b);
+  return box.empty() ? 0.0 : box.diagonal();
+}
+
+}  // namespace kintsugi

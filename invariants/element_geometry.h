@@ -1,0 +1,32 @@
+// Geometry of kernel elements: the measures repairs decide with (paper 3.1, 4.4, 4.6),
+// computed from the analytic geometry attached to the topology.
+//
+// Curved boundaries are sampled with a chordal error of `chordal` (a length; callers
+// pass a fraction of the modelling precision or of the tolerance, so results scale with
+// the model). An edge without a curve is taken as the straight segment between its
+// vertices.
+#pragma once
+
+#include "geometry/area.h"
+#include "geometry/box.h"
+#include "kernel/body.h"
+
+#include <vector>
+
+namespace kintsugi {
+
+// Points along the edge of h, from origin(h) to target(h), both included.
+std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chordal);
+double edge_length(const Body& b, EdgeH e);
+// The face's loops as closed polylines (outer first), for geo::measure_region.
+std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal);
+// Area, centroid, bounding box and tessellation of a face; `problem` says why not.
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal);
+double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal);
+double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal);
+// Bounding box of the vertices and sampled edges: its diagonal is the model size the
+// tolerance model scales with.
+geo::Box body_bounds(const Body& b);
+double model_size(const Body& b);
+
+}  // namespace kintsugi

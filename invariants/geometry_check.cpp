@@ -1,0 +1,121 @@
+#include "invariants/geometry_check.h"
+
+#include "geometry/curve.h"
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+
+#include <cmath>
+#include <sstream>
+#include <variant>
+
+namespace kintsugi {
+
+namespace {
+
+std::string fmt(double d) {
+  std::ostringstream os;
+  os.precision(3);
+  os << d;
+  return os.str();
+}
+
+struct Run {
+  const Body& b;
+  double precision;
+  GeometryReport r;
+
+  void deviation(double d, const char* inv, std::vector<std::string> els, const std::string& what) {
+    if (!std::isfinite(d)) d = HUGE_VAL;
+    if (d > r.max_deviation || r.max_elements.empty()) {
+      if (d >= r.max_deviation) {
+        r.max_deviation = d;
+        r.max_elements = els;
+      }
+    }
+    if (d > precision) r.violations.push_back({inv, std::move(els), what + " is " + fmt(d) + " away (precision " + fmt(precision) + ")", d});
+  }
+};
+
+bool has_surface(const Body& b, FaceH f) { return !std::holds_alternative<std::monostate>(b.surface(f)); }
+bool has_curve(const Body& b, EdgeH e) { return !std::holds_alternative<std::monostate>(b.curve(e)); }
+
+double polyline_chordal(const geo::Curve& c) {
+  if (const auto* p = std::get_if<geo::Polyline>(&c)) return p->chordal_error;
+  return 0.0;
+}
+
+}  // namespace
+
+GeometryReport check_geometry(const Body& b, double precision) {
+  Run run{b, precision, {}};
+  for (FaceH f : b.faces())
+    if (!has_surface(b, f)) run.r.violations.push_back({"face_without_surface", {f.str()}, "no surface attached", 0.0});
+  for (EdgeH e : b.edges())
+    if (!has_curve(b, e)) run.r.violations.push_back({"edge_without_curve", {e.str()}, "no curve attached", 0.0});
+
+  // Vertices on their curves and surfaces.
+  for (VertexH v : b.vertices()) {
+    const geo::Vec3& p = b.point(v);
+    auto outs = b.outgoing(v);
+    if (outs.empty()) {
+      for (LoopH l : b.loops())  // a lone vertex: on its face's surface
+        if (b.is_lone(l) && b.lone_vertex(l) == v && !b.is_border(l) && has_surface(b, b.face(l)))
+          run.deviation(std::abs(geo::signed_distance(b.surface(b.face(l)), p)), "vertex_on_surface",
+                        {v.str(), b.face(l).str()}, v.str() + " from the surface of " + b.face(l).str());
+      continue;
+    }
+    for (HalfedgeH h : outs) {
+      EdgeH e = edge_of(h);
+      if (has_curve(b, e))
+        run.deviation(geo::closest_point(b.curve(e), p).distance - polyline_chordal(b.curve(e)), "vertex_on_curve",
+                      {v.str(), e.str()}, v.str() + " from the curve of " + e.str());
+      if (!b.is_border(h) && has_surface(b, b.face(h)))
+        run.deviation(std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface",
+                      {v.str(), b.face(h).str()}, v.str() + " from the surface of " + b.face(h).str());
+    }
+  }
+
+  // Edges on both faces' surfaces, at points along them (the ends are the vertices, checked above).
+  for (EdgeH e : b.edges()) {
+    if (!has_curve(b, e)) continue;
+    HalfedgeH h = halfedge_of(e, 0);
+    // Sample points lie on the curve whatever the chordal error: a coarse one gives a few probes.
+    std::vector<geo::Vec3> pts = halfedge_polyline(b, h, std::max(precision, 1e-300) * 1e5);
+    std::vector<geo::Vec3> probes;
+    if (pts.size() == 2) {
+      for (double s : {0.25, 0.5, 0.75}) probes.push_back(pts[0] + s * (pts[1] - pts[0]));
+    } else {
+      std::size_t step = std::max<std::size_t>(1, pts.size() / 6);
+      for (std::size_t i = 1; i + 1 < pts.size(); i += step) probes.push_back(pts[i]);
+    }
+    double slack = polyline_chordal(b.curve(e));
+    for (HalfedgeH side : {h, twin(h)}) {
+      if (b.is_border(side) || !has_surface(b, b.face(side))) continue;
+      FaceH f = b.face(side);
+      double worst = 0.0;
+      for (const geo::Vec3& q : probes) worst = std::max(worst, std::abs(geo::signed_distance(b.surface(f), q)));
+      run.deviation(worst - slack, "edge_on_surface", {e.str(), f.str()}, e.str() + " from the surface of " + f.str());
+    }
+  }
+
+  // Planar faces: the outer loop turns counter-clockwise about the outward normal.
+  for (FaceH f : b.faces()) {
+    const auto* plane = std::get_if<geo::Plane>(&b.surface(f));
+    if (!plane) continue;
+    LoopH l = b.outer_loop(f);
+    if (b.is_lone(l)) continue;
+    std::vector<geo::Vec3> pts;
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      auto seg = halfedge_polyline(b, h, std::max(precision, 1e-300) * 1e5);
+      pts.insert(pts.end(), seg.begin(), seg.end() - 1);
+    }
+    geo::Vec3 n = geo::Vec3::Zero();
+    for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
+    geo::Vec3 outward = plane->frame.z * (b.same_sense(f) ? 1.0 : -1.0);
+    if (n.dot(outward) <= 0)
+      run.r.violations.push_back({"face_sense", {f.str()}, "outer loop turns clockwise about the outward normal", 0.0});
+  }
+  return run.r;
+}
+
+}  // namespace kintsugi

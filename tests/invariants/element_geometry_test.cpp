@@ -1,0 +1,84 @@
+// Measures on kernel elements against closed forms.
+#include "invariants/element_geometry.h"
+#include "kernel/builders.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+
+namespace kintsugi {
+namespace {
+
+constexpr double kChordal = 1e-7;
+
+double total_area(const Body& b) {
+  double a = 0;
+  for (FaceH f : b.faces()) {
+    auto m = face_measure(b, f, kChordal);
+    EXPECT_TRUE(m.ok()) << f << ": " << m.problem;
+    a += m.area;
+  }
+  return a;
+}
+
+TEST(ElementGeometry, BoxAreasAndLengths) {
+  Body b = build::box(1, 2, 3);
+  EXPECT_NEAR(total_area(b), 2 * (2 + 3 + 6), 1e-9);
+  double len = 0;
+  for (EdgeH e : b.edges()) len += edge_length(b, e);
+  EXPECT_NEAR(len, 4 * (1 + 2 + 3), 1e-12);
+  EXPECT_NEAR(model_size(b), std::sqrt(14.0), 1e-12);
+}
+
+TEST(ElementGeometry, CurvedSolidsMatchClosedForms) {
+  const double r = 1.5, h = 2.0, R = 3.0;
+  EXPECT_NEAR(total_area(build::cylinder(r, h)), 2 * M_PI * r * r + 2 * M_PI * r * h, 1e-5);
+  EXPECT_NEAR(total_area(build::cone(r, h)), M_PI * r * r + M_PI * r * std::sqrt(r * r + h * h), 1e-5);
+  EXPECT_NEAR(total_area(build::sphere(r)), 4 * M_PI * r * r, 1e-5);
+  EXPECT_NEAR(total_area(build::torus(R, r * 0.5)), 4 * M_PI * M_PI * R * r * 0.5, 1e-5);
+}
+
+TEST(ElementGeometry, EdgeLengthsOfCircles) {
+  Body c = build::cylinder(2, 1);
+  double circles = 0, lines = 0;
+  for (EdgeH e : c.edges()) {
+    if (std::holds_alternative<geo::Circle>(c.curve(e)))
+      circles += edge_length(c, e);
+    else
+      lines += edge_length(c, e);
+  }
+  EXPECT_NEAR(circles, 2 * 2 * M_PI * 2, 1e-12);
+  EXPECT_NEAR(lines, 1, 1e-12);
+  Body s = build::sphere(2);
+  EXPECT_NEAR(edge_length(s, s.edges()[0]), M_PI * 2, 1e-12);  // a meridian from pole to pole
+}
+
+TEST(ElementGeometry, Distances) {
+  Body b = build::box();
+  // Two opposite edges of the top face are 1 apart; a vertex is 0 from its own edges.
+  VertexH v = b.vertices()[0];
+  HalfedgeH h = b.out(v);
+  EXPECT_NEAR(vertex_edge_distance(b, v, edge_of(h), kChordal), 0, 1e-15);
+  double best = 1e9;
+  for (EdgeH e : b.edges())
+    if (e != edge_of(h)) best = std::min(best, edge_edge_distance(b, edge_of(h), e, kChordal));
+  EXPECT_NEAR(best, 0, 1e-15);  // adjacent edges touch
+}
+
+RC_GTEST_PROP(ElementGeometry, AreaAndLengthScaleWithTheModel, ()) {
+  const double k = *rc::gen::element(1e-3, 0.25, 4.0, 1e3);
+  Body a = build::cylinder(1, 2), b = build::cylinder(k, 2 * k);
+  double area_a = 0, area_b = 0;
+  for (FaceH f : a.faces()) area_a += face_measure(a, f, 1e-7).area;
+  for (FaceH f : b.faces()) area_b += face_measure(b, f, 1e-7 * k).area;
+  RC_ASSERT(std::abs(area_b / (k * k) - area_a) < 1e-6 * area_a);
+  double len_a = 0, len_b = 0;
+  for (EdgeH e : a.edges()) len_a += edge_length(a, e);
+  for (EdgeH e : b.edges()) len_b += edge_length(b, e);
+  RC_ASSERT(std::abs(len_b / k - len_a) < 1e-9 * len_a);
+}
+
+}  // namespace
+}  // namespace kintsugi
