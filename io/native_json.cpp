@@ -751,6 +751,9 @@ template <class... Fs>
 struct Overload : Fs... {
   using Fs::operator()...;
 };
+// clang before 17 does not deduce aggregate template arguments without a guide.
+template <class... Fs>
+Overload(Fs...) -> Overload<Fs...>;
 
 ojson surface_json(const geo::Surface& s) {
   return std::visit(
