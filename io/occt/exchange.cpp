@@ -186,11 +186,57 @@ std::optional<CadImport> import_step(const std::string& path, std::string* error
   return out;
 }
 
+// BRepTools::Read does not stop at the end of a truncated file (it can loop forever),
+// so the shape section is checked first: "TShapes n", n records (a type line, ..., a
+// line ending in '*'), then the root shape ("+1 0").
+bool brep_complete(const std::string& path, std::string* why) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  long declared = -1, records = 0;
+  bool in_record = false, root = false;
+  static const char* kTypes[] = {"Ve", "Ed", "Wi", "Fa", "Sh", "So", "CS", "Co"};
+  while (std::getline(in, line)) {
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+    if (declared < 0) {
+      if (line.rfind("TShapes ", 0) == 0) {
+        try {
+          declared = std::stol(line.substr(8));
+        } catch (const std::exception&) {
+          return *why = "the shape count after 'TShapes' is not a number", false;
+        }
+        if (declared < 0) return *why = "a negative shape count", false;
+      }
+      continue;
+    }
+    if (root) continue;
+    if (!in_record && records == declared) {
+      if (!line.empty() && (line[0] == '+' || line[0] == '-')) root = true;
+      continue;
+    }
+    if (!in_record) {
+      if (std::find(std::begin(kTypes), std::end(kTypes), line) != std::end(kTypes)) in_record = true;
+      continue;
+    }
+    if (!line.empty() && line.back() == '*') {
+      in_record = false;
+      ++records;
+    }
+  }
+  if (declared < 0) return *why = "no shape section (no 'TShapes' line)", false;
+  if (records < declared || !root)
+    return *why = "the shape section ends after " + std::to_string(records) + " of its " + std::to_string(declared) +
+                  " shapes" + (records == declared ? " (no root shape)" : ""),
+           false;
+  return true;
+}
+
 std::optional<CadImport> import_brep(const std::string& path, std::string* error) {
   std::string head, tail;
   if (!check_file(path, &head, &tail, error)) return std::nullopt;
   if (head.find("CASCADE Topology") == std::string::npos)
     return fail(error, path + ": not an OpenCASCADE BREP file (no 'CASCADE Topology' header)"), std::nullopt;
+  if (std::string why; !brep_complete(path, &why))
+    return fail(error, path + ": the BREP file is truncated or corrupt: " + why), std::nullopt;
   TopoDS_Shape shape;
   BRep_Builder bb;
   if (!BRepTools::Read(shape, path.c_str(), bb) || shape.IsNull())

@@ -15,9 +15,9 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
-#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomConvert.hxx>
 #include <GeomLib_IsPlanarSurface.hxx>
@@ -50,6 +50,7 @@
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Ax3.hxx>
+#include <gp_Pnt2d.hxx>
 
 #include <cmath>
 #include <map>
@@ -328,65 +329,73 @@ std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& loc
       return std::nullopt;
     }
     for (const TopoDS_Wire& w : wires) {
-      // The wire's edges as stored, with orientations composed from the face down: STEP
-      // edge loops and OpenCASCADE's own wires are stored in order. Only when that order
-      // does not chain up is BRepTools_WireExplorer asked for one (it reports closed
-      // edges FORWARD whatever their orientation, so orientations still come from the
-      // stored occurrences).
-      LoopBuild lb{std::uint32_t(fi), {}, kNone};
-      TopoDS_Vertex degenerate_vertex;
-      std::map<std::uint32_t, std::vector<std::uint32_t>> occurrences;  // edge id -> half-edges
-      bool slit = false;
+      // The wire's edges with orientations composed from the face down, put in
+      // traversal order: each next edge starts at the vertex where the last ended and,
+      // among several such (a vertex visited twice, closed edges, seams), where it ended
+      // in the face's parameter plane. The stored order is not always the traversal
+      // order (OpenCASCADE's torus), and BRepTools_WireExplorer reports closed edges
+      // FORWARD whatever their orientation, so neither is used as is.
+      struct Use {
+        TopoDS_Edge edge;
+        bool degenerated;
+        std::uint32_t from, to;  // vertex ids along the traversal
+        gp_Pnt2d uv_from, uv_to;
+        bool has_uv;
+      };
+      std::vector<Use> uses;
       for (TopoDS_Iterator it(w); it.More(); it.Next()) {
-        const TopoDS_Edge& e = TopoDS::Edge(it.Value());
-        if (BRep_Tool::Degenerated(e)) {
-          degenerate_vertex = TopExp::FirstVertex(e);
-          continue;
-        }
+        TopoDS_Edge e = TopoDS::Edge(it.Value());
         TopAbs_Orientation o = e.Orientation();
         if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) {
-          slit = true;
-          continue;
-        }
-        std::uint32_t id = edge_id(e);
-        std::uint32_t h = 2 * id + (o == TopAbs_FORWARD ? 0u : 1u);
-        lb.hes.push_back(h);
-        occurrences[id].push_back(h);
-      }
-      if (slit) {
-        *error = locate(face, int(fi + 1)) + ": has an internal or external edge (a slit), which kintsugi does not read";
-        return std::nullopt;
-      }
-      auto chains = [&](const std::vector<std::uint32_t>& hs) {
-        for (std::size_t k = 0; k < hs.size(); ++k) {
-          std::uint32_t h = hs[k], n = hs[(k + 1) % hs.size()];
-          std::uint32_t to = (h & 1u) ? edge_from[h / 2] : edge_to[h / 2];
-          std::uint32_t from = (n & 1u) ? edge_to[n / 2] : edge_from[n / 2];
-          if (to != from) return false;
-        }
-        return true;
-      };
-      if (!chains(lb.hes)) {
-        std::vector<std::uint32_t> ordered;
-        std::map<std::uint32_t, std::size_t> seen;
-        for (BRepTools_WireExplorer wex(w, face); wex.More(); wex.Next()) {
-          if (BRep_Tool::Degenerated(wex.Current())) continue;
-          std::uint32_t id = edge_id(wex.Current());
-          const std::vector<std::uint32_t>& occ = occurrences[id];
-          std::size_t k = seen[id]++;
-          if (occ.empty() || k >= occ.size()) break;
-          if (occ.size() == 1) {
-            ordered.push_back(occ[0]);
-          } else {  // a seam: the explorer's orientation first, then the other one
-            std::uint32_t h = 2 * id + (wex.Orientation() == TopAbs_FORWARD ? 0u : 1u);
-            ordered.push_back(k == 0 ? h : (h ^ 1u));
-          }
-        }
-        if (ordered.size() != lb.hes.size() || !chains(ordered)) {
-          *error = locate(face, int(fi + 1)) + ": a wire is not one connected cycle of edges";
+          *error = locate(face, int(fi + 1)) + ": has an internal or external edge (a slit), which kintsugi does not read";
           return std::nullopt;
         }
-        lb.hes = std::move(ordered);
+        Use u{e, BRep_Tool::Degenerated(e) == Standard_True, 0, 0, {}, {}, false};
+        u.from = vertex_id(TopExp::FirstVertex(e, Standard_True));
+        u.to = vertex_id(TopExp::LastVertex(e, Standard_True));
+        double a = 0, b = 0;
+        Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, a, b);
+        if (!pc.IsNull()) {
+          u.uv_from = pc->Value(o == TopAbs_FORWARD ? a : b);
+          u.uv_to = pc->Value(o == TopAbs_FORWARD ? b : a);
+          u.has_uv = true;
+        }
+        uses.push_back(u);
+      }
+      std::vector<std::size_t> order;
+      std::vector<std::uint8_t> used(uses.size(), 0);
+      if (!uses.empty()) {
+        order.push_back(0);
+        used[0] = 1;
+      }
+      while (order.size() < uses.size()) {
+        const Use& cur = uses[order.back()];
+        std::size_t best = uses.size();
+        double best_d = 0;
+        for (std::size_t k = 0; k < uses.size(); ++k) {
+          if (used[k] || uses[k].from != cur.to) continue;
+          double d = (cur.has_uv && uses[k].has_uv) ? cur.uv_to.Distance(uses[k].uv_from) : 0.0;
+          if (best == uses.size() || d < best_d) best = k, best_d = d;
+        }
+        if (best == uses.size()) break;
+        used[best] = 1;
+        order.push_back(best);
+      }
+      if (order.size() != uses.size() || (!uses.empty() && uses[order.back()].to != uses[order.front()].from)) {
+        *error = locate(face, int(fi + 1)) + ": a wire is not one connected cycle of edges (" +
+                 std::to_string(order.size()) + " of its " + std::to_string(uses.size()) + " edges chain up)";
+        return std::nullopt;
+      }
+      LoopBuild lb{std::uint32_t(fi), {}, kNone};
+      TopoDS_Vertex degenerate_vertex;
+      for (std::size_t k : order) {
+        const Use& u = uses[k];
+        if (u.degenerated) {
+          degenerate_vertex = TopExp::FirstVertex(u.edge);
+          continue;
+        }
+        std::uint32_t id = edge_id(u.edge);
+        lb.hes.push_back(2 * id + (u.edge.Orientation() == TopAbs_FORWARD ? 0u : 1u));
       }
       if (lb.hes.empty()) {
         if (degenerate_vertex.IsNull()) continue;  // an empty wire

@@ -15,6 +15,7 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
+#include <Geom2d_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_ConicalSurface.hxx>
@@ -45,6 +46,8 @@
 #include <gp_Circ.hxx>
 #include <gp_Elips.hxx>
 #include <gp_Lin.hxx>
+#include <gp_Pnt2d.hxx>
+#include <gp_Vec2d.hxx>
 
 #include <cmath>
 #include <map>
@@ -220,7 +223,14 @@ class Builder {
     if (d1 > kTol) bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), 1.001 * d1));
     BRepBuilderAPI_MakeEdge me(c->curve, tv0, tv1, c->t0, c->t1);
     if (!me.IsDone()) return *error = "edge " + e.str() + ": OpenCASCADE refused it: " + status_of(me.Error()), false;
-    out_.edge[e.idx()] = me.Edge();
+    TopoDS_Edge te = me.Edge();
+    // A polyline stands for a curve it is within `chordal_error` of: that is its tolerance.
+    if (const auto* pl = std::get_if<geo::Polyline>(&b_.curve(e)); pl && pl->chordal_error > kTol) {
+      bb_.UpdateEdge(te, pl->chordal_error);
+      bb_.UpdateVertex(tv0, std::max(BRep_Tool::Tolerance(tv0), pl->chordal_error));
+      bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), pl->chordal_error));
+    }
+    out_.edge[e.idx()] = te;
     return true;
   }
 
@@ -240,6 +250,27 @@ class Builder {
     }
     w.Closed(true);
     return w;
+  }
+
+  // A seam edge has two pcurves on its face, one per orientation, a period apart; the
+  // face lies between them, so seen along the FORWARD pcurve the REVERSED one is on the
+  // left (material on the left of a wire in the parameter plane). ShapeFix guesses the
+  // pair's order; this puts it right.
+  void orient_seams(const TopoDS_Wire& w, const TopoDS_Face& face) {
+    for (TopoDS_Iterator it(w); it.More(); it.Next()) {
+      TopoDS_Edge e = TopoDS::Edge(it.Value());
+      if (it.Value().Orientation() != TopAbs_FORWARD || !BRep_Tool::IsClosed(e, face)) continue;
+      double a, b;
+      Handle(Geom2d_Curve) cf = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Oriented(TopAbs_FORWARD)), face, a, b);
+      Handle(Geom2d_Curve) cr = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Oriented(TopAbs_REVERSED)), face, a, b);
+      if (cf.IsNull() || cr.IsNull()) continue;
+      gp_Pnt2d pf;
+      gp_Vec2d d;
+      cf->D1(0.5 * (a + b), pf, d);
+      gp_Pnt2d pr = cr->Value(0.5 * (a + b));
+      gp_Vec2d left(-d.Y(), d.X());
+      if (gp_Vec2d(pf, pr).Dot(left) < 0) bb_.UpdateEdge(e, cr, cf, face, BRep_Tool::Tolerance(e));
+    }
   }
 
   bool make_face(FaceH f, std::string* error) {
@@ -278,7 +309,10 @@ class Builder {
       // inconsistency occt_check is there to find.
       fix.FixSameParameterMode() = 0;
       fix.FixVertexToleranceMode() = 0;
+      fix.FixShiftedMode() = 0;
       fix.FixEdgeCurves();
+      orient_seams(w, tf);
+      fix.FixShifted();
       fix.FixDegenerated();
       w = fix.Wire();
     }
