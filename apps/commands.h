@@ -24,5 +24,6 @@ int cmd_generate(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_check(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_inject(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_measure(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_detect(const std::vector<std::string>&, std::ostream&, std::ostream&);
 
 }  // namespace kintsugi::cli

@@ -12,6 +12,7 @@ const std::vector<Command>& commands() {
       {"generate", "write a built-in model", cmd_generate},
       {"check", "check a model's topology and geometry", cmd_check},
       {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
+      {"detect", "find the eleven kinds of topological problem", cmd_detect},
       {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
   };
   return table;

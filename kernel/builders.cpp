@@ -263,6 +263,10 @@ Body grid_box(std::size_t faces, double size) {
   b = std::move(base);
   b.set_journaling(false);
   if (k > 1) {
+    // The box's own corners: after the first sides are cut, points along the edges have
+    // degree 3 too, so corners are recognised by identity, not by degree.
+    std::vector<std::uint8_t> corner(b.vertex_slots(), 0);
+    for (VertexH v : b.vertices()) corner[v.idx()] = 1;
     // Split every edge into k pieces.
     for (EdgeH e : b.edges()) {
       HalfedgeH h = halfedge_of(e, 0);
@@ -273,10 +277,10 @@ Body grid_box(std::size_t faces, double size) {
       }
     }
     for (FaceH f : std::vector<FaceH>(b.faces())) {
-      // The face's boundary: 4k vertices; find the corners (vertices of degree 3).
+      // The face's boundary: 4k vertices, starting at one of the box's corners.
       std::vector<VertexH> ring = b.loop_vertices(b.outer_loop(f));
       std::size_t c0 = 0;
-      while (b.degree(ring[c0]) != 3) ++c0;
+      while (!(ring[c0].idx() < corner.size() && corner[ring[c0].idx()])) ++c0;
       std::rotate(ring.begin(), ring.begin() + long(c0), ring.end());
       // Sides (counter-clockwise): bottom ring[0..k], right ring[k..2k], top ring[2k..3k], left ring[3k..4k].
       auto at = [&](std::size_t i) { return ring[i % (4 * k)]; };

@@ -72,6 +72,14 @@ TEST(Builders, GridBox) {
   EXPECT_EQ(b.counts().edges, 1200u);
   EXPECT_EQ(b.counts().vertices, 602u);
   expect_valid(b);
+  // A true grid: every face a quad, every vertex on 3 (box corners) or 4 edges.
+  for (FaceH f : b.faces()) EXPECT_EQ(b.loop_halfedges(b.outer_loop(f)).size(), 4u) << f;
+  int corners = 0;
+  for (VertexH v : b.vertices()) {
+    EXPECT_TRUE(b.degree(v) == 3 || b.degree(v) == 4) << v << " has degree " << b.degree(v);
+    corners += b.degree(v) == 3;
+  }
+  EXPECT_EQ(corners, 8);
 }
 
 TEST(Builders, OuterLoopsAreCounterClockwiseFromOutside) {

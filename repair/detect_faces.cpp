@@ -1,0 +1,186 @@
+// Face problems: small faces and their chains (paper 4.3, 4.6), slivers (4.4), pinched
+// faces (4.2) and adjacent faces with the same geometry (4.5).
+#include "geometry/distance.h"
+#include "geometry/same_geometry.h"
+#include "invariants/element_geometry.h"
+#include "repair/detect_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <variant>
+
+namespace kintsugi::detail {
+
+void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
+  const Body& b = c.b;
+  // Small faces and the small faces across their edges.
+  std::vector<std::vector<FaceH>> small_nbrs(b.face_slots());
+  for (FaceH f : b.faces()) {
+    if (!c.faces[f.idx()].small) continue;
+    std::set<FaceH> ns;
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        FaceH g = b.face(twin(h));
+        if (g.valid() && g != f && c.faces[g.idx()].small) ns.insert(g);
+      }
+    small_nbrs[f.idx()].assign(ns.begin(), ns.end());
+  }
+  // A chain: connected small faces none of which has more than two small neighbours. A
+  // face with more is a branch point of a network of small faces (paper 7): it joins no
+  // chain and is reported on its own.
+  auto chainable = [&](FaceH f) { return small_nbrs[f.idx()].size() <= 2; };
+  std::vector<std::uint8_t> seen(b.face_slots(), 0);
+  for (FaceH f : b.faces()) {
+    const FaceInfo& fi = c.faces[f.idx()];
+    if (fi.sliver) {
+      out.push_back({ProblemType::sliver_face, {f.str()}, fi.area / fi.bbox_diagonal, "width", ""});
+      continue;
+    }
+    if (!fi.small || seen[f.idx()]) continue;
+    std::vector<FaceH> comp{f};
+    seen[f.idx()] = 1;
+    if (chainable(f)) {
+      for (std::size_t i = 0; i < comp.size(); ++i)
+        for (FaceH g : small_nbrs[comp[i].idx()])
+          if (!seen[g.idx()] && chainable(g)) {
+            seen[g.idx()] = 1;
+            comp.push_back(g);
+          }
+    }
+    Problem p;
+    p.type = comp.size() >= 2 ? ProblemType::small_face_chain : ProblemType::small_face;
+    std::sort(comp.begin(), comp.end());
+    double area = 0;
+    for (FaceH g : comp) {
+      p.elements.push_back(g.str());
+      area += c.faces[g.idx()].area;
+    }
+    p.measure = area;
+    p.measure_name = "area";
+    out.push_back(std::move(p));
+  }
+}
+
+namespace {
+
+// Drops the first (`from_start`) or last stretch of arc length `len` from a polyline.
+std::vector<geo::Vec3> trim(std::vector<geo::Vec3> pts, double len, bool from_start) {
+  if (!from_start) std::reverse(pts.begin(), pts.end());
+  std::vector<geo::Vec3> out;
+  double run = 0;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    double seg = (pts[i + 1] - pts[i]).norm();
+    if (run + seg > len) {
+      if (out.empty()) out.push_back(pts[i] + (pts[i + 1] - pts[i]) * ((len - run) / seg));
+      out.push_back(pts[i + 1]);
+    }
+    run += seg;
+  }
+  if (!from_start) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+double distance(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b) {
+  if (a.empty() || b.empty()) return HUGE_VAL;
+  if (a.size() == 1) return b.size() == 1 ? (a[0] - b[0]).norm() : geo::point_polyline(a[0], b).distance;
+  if (b.size() == 1) return geo::point_polyline(b[0], a).distance;
+  return geo::polyline_polyline(a, b).distance;
+}
+
+struct Pinch {
+  double dist = HUGE_VAL;
+  HalfedgeH a, b;
+  std::string where;  // necking / spiking / bossing
+  int pairs = 0;      // how many edge pairs come closer than the tolerance
+};
+
+}  // namespace
+
+void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
+  const Body& b = c.b;
+  const double t = c.tol.length;
+  for (FaceH f : b.faces()) {
+    const FaceInfo& fi = c.faces[f.idx()];
+    if (!fi.measured || fi.small || fi.sliver) continue;
+    std::vector<LoopH> loops = b.loops_of(f);
+    std::vector<std::vector<HalfedgeH>> hes;
+    std::vector<std::vector<std::vector<geo::Vec3>>> polys;
+    for (LoopH l : loops) {
+      hes.push_back(b.loop_halfedges(l));
+      polys.emplace_back();
+      for (HalfedgeH h : hes.back()) polys.back().push_back(halfedge_polyline(b, h, c.chordal));
+    }
+    auto len = [&](HalfedgeH h) { return c.edge_length[edge_of(h).idx()]; };
+    Pinch best;
+    auto consider = [&](double d, HalfedgeH x, HalfedgeH y, const char* where) {
+      if (!(d < t)) return;
+      best.pairs++;
+      if (d < best.dist) best = {d, x, y, where, best.pairs};
+    };
+    for (std::size_t la = 0; la < hes.size(); ++la) {
+      const auto& A = hes[la];
+      std::size_t n = A.size();
+      // Pairs within one loop.
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+          if (edge_of(A[i]) == edge_of(A[j])) continue;  // a seam
+          if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // consecutive
+          double l1 = 0, l2 = 0;  // boundary between them: after A[i] up to A[j], and after A[j] round to A[i]
+          for (std::size_t k = i + 1; k < j; ++k) l1 += len(A[k]);
+          for (std::size_t k = j + 1; k < n + i; ++k) l2 += len(A[k % n]);
+          if (l1 < t && l2 < t) continue;  // the whole face is tiny: a small face's business
+          if (l1 < t || l2 < t) {
+            // Joined through a chain shorter than the tolerance: they count as a pinch only
+            // where they come close away from that chain (a spike), not at the chain itself
+            // (that is a short edge or chain).
+            bool near_end_of_i = l1 < t;  // the chain starts at A[i]'s end
+            auto pa = trim(polys[la][i], t, !near_end_of_i);
+            auto pb = trim(polys[la][j], t, near_end_of_i);
+            consider(distance(pa, pb), A[i], A[j], "spiking");
+          } else {
+            consider(distance(polys[la][i], polys[la][j]), A[i], A[j], "necking");
+          }
+        }
+      // Pairs across loops: an inner loop close to the outer loop (or to another ring).
+      for (std::size_t lb = la + 1; lb < hes.size(); ++lb)
+        for (std::size_t i = 0; i < n; ++i)
+          for (std::size_t j = 0; j < hes[lb].size(); ++j) {
+            if (b.origin(A[i]) == b.origin(hes[lb][j]) || b.target(A[i]) == b.target(hes[lb][j]) ||
+                b.origin(A[i]) == b.target(hes[lb][j]) || b.target(A[i]) == b.origin(hes[lb][j]))
+              continue;  // loops touching at a vertex
+            consider(distance(polys[la][i], polys[lb][j]), A[i], hes[lb][j], "bossing");
+          }
+    }
+    if (!best.a.valid()) continue;
+    bool straight = best.pairs == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
+                    std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
+    out.push_back({ProblemType::pinched_face,
+                   {f.str(), edge_of(best.a).str(), edge_of(best.b).str()},
+                   best.dist,
+                   "distance",
+                   best.where + (straight ? "/straight" : "/complex")});
+  }
+}
+
+void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
+  const Body& b = c.b;
+  std::set<std::pair<FaceH, FaceH>> done;
+  auto samples = [&](FaceH f) {
+    std::vector<geo::Vec3> pts;
+    for (const auto& loop : face_boundary(b, f, c.chordal * 100)) pts.insert(pts.end(), loop.begin(), loop.end());
+    return pts;
+  };
+  for (EdgeH e : b.edges()) {
+    FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
+    if (!f1.valid() || !f2.valid() || f1 == f2) continue;
+    if (b.surface(f1).index() != b.surface(f2).index() || std::holds_alternative<std::monostate>(b.surface(f1))) continue;
+    auto key = std::minmax(f1, f2);
+    if (!done.insert(key).second) continue;
+    double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2));
+    if (dev <= c.tol.length)
+      out.push_back({ProblemType::same_geometry_faces, {key.first.str(), key.second.str()}, dev, "distance", ""});
+  }
+}
+
+}  // namespace kintsugi::detail

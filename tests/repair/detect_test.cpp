@@ -1,0 +1,205 @@
+// Detection against models whose defects are known (zoo/): clean models report nothing,
+// injected defects are reported as their type at the place the injector names, the
+// tolerance boundary is sharp, and scaling model and tolerance together changes nothing.
+#include "invariants/element_geometry.h"
+#include "kernel/builders.h"
+#include "kernel/euler.h"
+#include "repair/detect.h"
+#include "zoo/zoo.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <set>
+
+namespace kintsugi {
+namespace {
+
+// Uniform scaling by k of curves and surfaces (frames' origins and every length).
+geo::Frame scaled(geo::Frame f, double k) {
+  f.origin *= k;
+  return f;
+}
+geo::Curve scaled(const geo::Curve& c, double k) {
+  if (auto* l = std::get_if<geo::Line>(&c)) return geo::Line{l->origin * k, l->direction};
+  if (auto* ci = std::get_if<geo::Circle>(&c)) return geo::Circle{scaled(ci->frame, k), ci->radius * k};
+  if (auto* e = std::get_if<geo::Ellipse>(&c))
+    return geo::Ellipse{scaled(e->frame, k), e->major_radius * k, e->minor_radius * k};
+  if (auto* p = std::get_if<geo::Polyline>(&c)) {
+    geo::Polyline q = *p;
+    for (auto& x : q.points) x *= k;
+    q.chordal_error *= k;
+    return q;
+  }
+  return c;
+}
+geo::Surface scaled(const geo::Surface& s, double k) {
+  if (auto* p = std::get_if<geo::Plane>(&s)) return geo::Plane{scaled(p->frame, k)};
+  if (auto* c = std::get_if<geo::Cylinder>(&s)) return geo::Cylinder{scaled(c->frame, k), c->radius * k};
+  if (auto* c = std::get_if<geo::Cone>(&s)) return geo::Cone{scaled(c->frame, k), c->radius * k, c->half_angle};
+  if (auto* c = std::get_if<geo::Sphere>(&s)) return geo::Sphere{scaled(c->frame, k), c->radius * k};
+  if (auto* c = std::get_if<geo::Torus>(&s)) return geo::Torus{scaled(c->frame, k), c->major_radius * k, c->minor_radius * k};
+  return s;
+}
+
+geo::Tolerances tol_for(const Body& b, double t) { return geo::Tolerances::for_model(t, model_size(b)); }
+
+std::string describe(const Detection& d) {
+  std::string s;
+  for (const Problem& p : d.problems) {
+    s += std::string(problem_name(p.type)) + " [";
+    for (auto& e : p.elements) s += e + " ";
+    s += "] " + std::to_string(p.measure) + " " + p.subcase + "\n";
+  }
+  return s;
+}
+
+std::vector<std::pair<std::string, Body>> clean_solids() {
+  return {{"box", build::box(1, 2, 3)},
+          {"prism", build::prism(build::regular_polygon(6, 1), 2)},
+          {"pyramid", build::pyramid(build::regular_polygon(4, 1), 1)},
+          {"cylinder", build::cylinder(1, 2)},
+          {"cone", build::cone(1, 2)},
+          {"sphere", build::sphere(1)},
+          {"torus", build::torus(3, 1)}};
+}
+
+TEST(Detect, CleanBuilderSolidsReportNothing) {
+  for (auto& [name, b] : clean_solids()) {
+    Detection d = detect(b, tol_for(b, 0.01));
+    EXPECT_TRUE(d.problems.empty()) << name << ":\n" << describe(d);
+  }
+}
+
+TEST(Detect, GridBoxReportsItsCoplanarNeighboursOnly) {
+  Body b = build::grid_box(24);  // k = 2: each side in 4 coplanar quads
+  Detection d = detect(b, tol_for(b, 0.01));
+  EXPECT_EQ(d.count(ProblemType::same_geometry_faces), 24);  // 6 sides x 4 adjacent pairs
+  EXPECT_EQ(int(d.problems.size()), d.count(ProblemType::same_geometry_faces)) << describe(d);
+}
+
+TEST(Detect, PaperObjectsReportExactlyTheirDefects) {
+  for (int n = 1; n <= 10; ++n) {
+    zoo::ZooModel m;
+    try {
+      m = zoo::paper_object(n, false);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "paper object " << n << " not available: " << e.what();
+      continue;
+    }
+    Detection d = detect(m.body, tol_for(m.body, m.tolerance));
+    std::array<int, 11> expected{};
+    for (const auto& k : m.defects) expected[std::size_t(problem_order(k.type) - 1)]++;
+    EXPECT_EQ(d.counts, expected) << "object " << n << ":\n" << describe(d);
+    zoo::ZooModel clean = zoo::paper_object(n, true);
+    Detection dc = detect(clean.body, tol_for(clean.body, clean.tolerance));
+    EXPECT_TRUE(dc.problems.empty()) << "object " << n << " clean:\n" << describe(dc);
+  }
+}
+
+// An injected defect of type k is reported as type k, at an element the injector names.
+RC_GTEST_PROP(Detect, InjectedDefectIsFoundWhereItWasPut, ()) {
+  const ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
+  const int which = *rc::gen::inRange(0, 4);
+  const std::uint64_t seed = *rc::gen::arbitrary<std::uint32_t>();
+  Body b = which == 0 ? build::box(1, 1, 1)
+         : which == 1 ? build::prism(build::regular_polygon(6, 1), 1)
+         : which == 2 ? build::pyramid(build::regular_polygon(4, 1), 1)
+                      : build::prism(build::regular_polygon(5, 1), 2);
+  const double t = 0.02;
+  std::string error;
+  auto inj = zoo::inject(b, type, seed, std::nullopt, t, &error);
+  RC_PRE(inj.has_value());  // not every solid has a place for every type
+  Detection d = detect(b, tol_for(b, t));
+  std::set<std::string> named(inj->defect.elements.begin(), inj->defect.elements.end());
+  bool found = false;
+  for (const Problem& p : d.problems)
+    if (p.type == type)
+      for (const auto& e : p.elements) found = found || named.count(e);
+  if (!found) RC_FAIL(std::string("injected ") + problem_name(type) + " (" + inj->description + ") not reported:\n" + describe(d));
+}
+
+// The same model and tolerance scaled by k: the same report, measures scaled by k (or k²).
+RC_GTEST_PROP(Detect, ScalingModelAndToleranceChangesNothing, ()) {
+  const ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
+  const double k = *rc::gen::element(1e-3, 0.1, 10.0, 1e3);
+  const std::uint64_t seed = *rc::gen::arbitrary<std::uint32_t>();
+  const double t = 0.02;
+  Body a = build::prism(build::regular_polygon(6, 1), 1);
+  std::string error;
+  RC_PRE(zoo::inject(a, type, seed, std::nullopt, t, &error).has_value());
+  Body b = a.clone();
+  for (VertexH v : b.vertices()) b.set_point(v, b.point(v) * k);
+  for (EdgeH e : b.edges()) b.set_curve(e, scaled(b.curve(e), k));
+  for (FaceH f : b.faces()) b.set_surface(f, scaled(b.surface(f), k), b.same_sense(f));
+  Detection da = detect(a, tol_for(a, t)), db = detect(b, tol_for(b, t * k));
+  RC_ASSERT(da.counts == db.counts);
+  RC_ASSERT(da.problems.size() == db.problems.size());
+  for (std::size_t i = 0; i < da.problems.size(); ++i) {
+    RC_ASSERT(da.problems[i].elements == db.problems[i].elements);
+    double p = da.problems[i].measure_name == "area" ? k * k : k;
+    RC_ASSERT(std::abs(db.problems[i].measure - p * da.problems[i].measure) <= 1e-6 * p * (1 + da.problems[i].measure));
+  }
+}
+
+// A short edge at a pyramid's apex, just below and just above the tolerance.
+Body pyramid_with_apex_edge(double length) {
+  Body b = build::pyramid(build::regular_polygon(4, 1), 1);
+  VertexH apex;
+  for (VertexH v : b.vertices())
+    if (b.degree(v) == 4) apex = v;
+  auto outs = b.outgoing(apex);
+  geo::Vec3 p = b.point(apex) + geo::Vec3(length, 0, 0);
+  auto r = euler::mev_split(b, outs[0], outs[2], p);
+  EXPECT_TRUE(r);
+  return b;
+}
+
+TEST(Detect, ToleranceBoundaryIsSharp) {
+  const double t = 0.01;
+  Body below = pyramid_with_apex_edge(0.99 * t), above = pyramid_with_apex_edge(1.01 * t);
+  Detection d1 = detect(below, tol_for(below, t)), d2 = detect(above, tol_for(above, t));
+  EXPECT_EQ(d1.count(ProblemType::short_edge), 1) << describe(d1);
+  EXPECT_EQ(d1.problems.size(), 1u) << describe(d1);  // its neighbours are not a pinch
+  EXPECT_EQ(d2.count(ProblemType::short_edge), 0) << describe(d2);
+  // Small faces: area just below and just above tol².
+  Body thin_below = build::box(0.99 * t, 1, 1), thin_above = build::box(1, 1, 1);
+  (void)thin_above;
+  Detection d3 = detect(thin_below, tol_for(thin_below, t));
+  EXPECT_GE(d3.count(ProblemType::sliver_face), 4) << describe(d3);  // the four long thin sides
+}
+
+TEST(Detect, ShortEdgeChainAndMergeableVertex) {
+  const double t = 0.01;
+  Body b = pyramid_with_apex_edge(0.8 * t);
+  // Split the apex edge: two short edges joined by a vertex on exactly two edges.
+  EdgeH shortest;
+  double best = 1e9;
+  for (EdgeH e : b.edges())
+    if (edge_length(b, e) < best) best = edge_length(b, e), shortest = e;
+  HalfedgeH h = halfedge_of(shortest, 0);
+  ASSERT_TRUE(euler::semv(b, h, (b.point(b.origin(h)) + b.point(b.target(h))) / 2));
+  Detection d = detect(b, tol_for(b, t));
+  EXPECT_EQ(d.count(ProblemType::short_edge_chain), 1) << describe(d);
+  EXPECT_EQ(d.count(ProblemType::mergeable_edges), 0) << describe(d);
+  EXPECT_EQ(d.count(ProblemType::short_edge), 0) << describe(d);
+  // A long edge cut in the middle: a mergeable vertex, nothing short.
+  Body box = build::box();
+  HalfedgeH g = box.halfedges()[0];
+  ASSERT_TRUE(euler::semv(box, g, (box.point(box.origin(g)) + box.point(box.target(g))) / 2));
+  Detection dm = detect(box, tol_for(box, t));
+  EXPECT_EQ(dm.count(ProblemType::mergeable_edges), 1) << describe(dm);
+  EXPECT_EQ(dm.problems.size(), 1u) << describe(dm);
+}
+
+TEST(Detect, GapsByHowManyFacesTheySpan) {
+  Body b = build::box();
+  ASSERT_TRUE(euler::kfmb(b, b.faces()[0]));  // a whole side missing: a gap across 4 faces
+  Detection d = detect(b, tol_for(b, 0.01));
+  EXPECT_EQ(d.count(ProblemType::multi_face_gap), 1) << describe(d);
+  EXPECT_EQ(d.problems.size(), 1u) << describe(d);
+}
+
+}  // namespace
+}  // namespace kintsugi
