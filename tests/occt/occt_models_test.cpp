@@ -95,8 +95,11 @@ TEST(OcctModels, Cylinder) {
 
 TEST(OcctModels, ConeWithApex) {
   Body b = import_both(BRepPrimAPI_MakeCone(3, 0, 4).Shape(), "occt_cone", counts(2, 2, 2, 2));
-  for (FaceH f : b.faces())
-    if (const auto* c = std::get_if<geo::Cone>(&b.surface(f))) EXPECT_NEAR(std::abs(std::tan(c->half_angle)), 0.75, 1e-12);
+  for (FaceH f : b.faces()) {
+    if (const auto* c = std::get_if<geo::Cone>(&b.surface(f))) {
+      EXPECT_NEAR(std::abs(std::tan(c->half_angle)), 0.75, 1e-12);
+    }
+  }
 }
 
 TEST(OcctModels, TruncatedCone) {
