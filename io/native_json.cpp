@@ -149,11 +149,9 @@ class BoundedDocumentBuilder {
     }
     Level& top = stack_.back();
     if (top.node->is_array()) {
-      top.open_child = std::to_string(top.node->size());
       top.node->push_back(std::move(v));
       return &top.node->back();
     }
-    top.open_child = escape_token(top.key);
     top.has_key = false;
     json& slot = (*top.node)[top.key];
     slot = std::move(v);
@@ -163,6 +161,10 @@ class BoundedDocumentBuilder {
   bool open(json container) {
     if (stack_.size() >= kMaxNativeDepth)
       return fail("nesting is deeper than " + std::to_string(kMaxNativeDepth) + " levels");
+    if (!stack_.empty()) {
+      Level& parent = stack_.back();
+      parent.open_child = parent.node->is_array() ? std::to_string(parent.node->size()) : escape_token(parent.key);
+    }
     json* node = insert(std::move(container));
     // Children are complete before their next sibling is added, so `node` stays valid
     // while it is on the stack.
@@ -804,28 +806,13 @@ ojson curve_json(const geo::Curve& c) {
 }
 
 // One element on one line, with a space after ':' and ',' (nlohmann's compact form has
-// none, its indented form puts every number on its own line).
+// none, its indented form puts every number on its own line). Element objects hold only
+// our own keys and type names, numbers, booleans and null, so no string contains ':' or
+// ',' and spacing the compact form is safe.
 void dump_inline(const ojson& j, std::string& out) {
-  if (j.is_object()) {
-    out += '{';
-    bool first = true;
-    for (const auto& item : j.items()) {
-      if (!first) out += ", ";
-      first = false;
-      out += ojson(item.key()).dump(-1, ' ', false, ojson::error_handler_t::replace);
-      out += ": ";
-      dump_inline(item.value(), out);
-    }
-    out += '}';
-  } else if (j.is_array()) {
-    out += '[';
-    for (std::size_t i = 0; i < j.size(); ++i) {
-      if (i) out += ", ";
-      dump_inline(j[i], out);
-    }
-    out += ']';
-  } else {
-    out += j.dump(-1, ' ', false, ojson::error_handler_t::replace);
+  for (char c : j.dump()) {
+    out += c;
+    if (c == ',' || c == ':') out += ' ';
   }
 }
 
