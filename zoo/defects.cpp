@@ -233,7 +233,6 @@ KnownDefect apex_short_edge(Body& b, VertexH v, double length, Rng& rng) {
   if (!apex || apex->out.size() != 4 || !convex_corner_axis(b, v))
     throw Unsuitable(v.str() + " is not a convex apex of four planar triangles");
   std::vector<double> unit(4);
-  for (double& u : unit) u = rng.uniform(0.3, 1.0) * rng.sign();
   // The meeting points P_j of F_{j-1}, F_j, F_{j+1}; the two that lie inside the fourth
   // plane are the ends of the short edge. Their distance is linear in small angles.
   struct Config {
@@ -263,11 +262,18 @@ KnownDefect apex_short_edge(Body& b, VertexH v, double length, Rng& rng) {
   };
   double reach = 0;
   for (const Vec3& q : apex->base_a) reach = std::max(reach, (q - b.point(v)).norm());
-  double theta = 1e-4 * length / reach;
-  Config c = config(theta);
-  for (int it = 0; it < 3 && c.j >= 0; ++it) {
-    theta *= length / (c.p1 - c.p2).norm();
+  // Some draws turn the planes so that three of the four meeting points are inside (the
+  // tip is then a tiny triangle, not an edge): draw again.
+  Config c;
+  for (int attempt = 0; attempt < 20 && c.j < 0; ++attempt) {
+    for (double& u : unit) u = rng.uniform(0.3, 1.0) * rng.sign();
+    double theta = 1e-4 * length / reach;
     c = config(theta);
+    for (int it = 0; it < 3 && c.j >= 0; ++it) {
+      theta *= length / (c.p1 - c.p2).norm();
+      c = config(theta);
+    }
+    if (c.j >= 0 && std::abs((c.p1 - c.p2).norm() / length - 1) > 0.05) c.j = -1;
   }
   if (c.j < 0) throw Unsuitable("the turned planes at " + v.str() + " do not give one short edge");
   int j = c.j;
