@@ -1,0 +1,75 @@
+// Internal to beautification: what the passes share (repair/pass_*.cpp).
+#pragma once
+
+#include "geometry/tolerance.h"
+#include "kernel/body.h"
+#include "repair/beautify.h"
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace kintsugi::detail {
+
+// Elements a repair changed: the local geometry check looks at these and what is
+// around them.
+struct Touched {
+  std::set<VertexH> vertices;
+  std::set<EdgeH> edges;
+  std::set<FaceH> faces;
+};
+
+// What a repair function gets: the body (inside an open Transaction), the problem, the
+// tolerances; it fills `touched` and returns "" on success or the reason it cannot.
+struct RepairCall {
+  Body& b;
+  const Problem& problem;
+  const geo::Tolerances& tol;
+  Touched& touched;
+};
+
+std::string repair_short_edge_chain(RepairCall& c);
+std::string repair_same_geometry(RepairCall& c);
+std::string repair_small_face(RepairCall& c);
+std::string repair_mergeable_edges(RepairCall& c);
+std::string repair_short_edge(RepairCall& c);
+
+// Problems of the same type that a committed repair may have created, to be appended
+// to the pass's queue (end of paper 3.3).
+std::vector<Problem> follow_ups(const Body& b, const geo::Tolerances& tol, ProblemType t, const Touched& touched);
+std::vector<Problem> same_geometry_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched);
+std::vector<Problem> short_edge_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched);
+
+// ---- shared helpers (beautify_geometry.cpp) -------------------------------------
+// "e7" -> EdgeH(7); invalid handle when the text is not of that kind.
+VertexH parse_vertex(const std::string& s);
+EdgeH parse_edge(const std::string& s);
+FaceH parse_face(const std::string& s);
+
+// The curve for edge e from the faces beside it: the line through its vertices when
+// both are planes, else the branch of their intersection through its vertices, oriented
+// like the edge's present curve. nullopt with *why when none is within tolerance.
+std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::Tolerances& tol, std::string* why);
+
+// Puts each vertex at the point nearest its guess where the surfaces of its faces meet
+// (geo::meet_point; least squares for more than three), then re-derives the curves of
+// every edge at those vertices. Fails when the surfaces do not meet within tolerance or
+// the point is more than `max_move` from the guess. Faces in `ignore` are left out of the
+// meeting (a neighbour with nearly the same surface, still to be merged, would make the
+// point ill-conditioned).
+std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Vec3>>& guesses,
+                           const geo::Tolerances& tol, double max_move, Touched& touched,
+                           const std::set<FaceH>& ignore = {});
+
+// Faces on either side of the edges around v (no border cycles), without repeats.
+std::vector<FaceH> faces_around(const Body& b, VertexH v);
+
+// Largest deviation of the touched elements and their neighbourhoods (vertices from the
+// curves and surfaces of their edges and faces, edges from both faces' surfaces); sets
+// *why for a missing curve/surface or a face left with fewer than three straight sides.
+double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& tol, std::string* why);
+
+double face_area(const Body& b, FaceH f, const geo::Tolerances& tol);
+
+}  // namespace kintsugi::detail

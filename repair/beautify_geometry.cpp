@@ -1,0 +1,258 @@
+// Geometry shared by the repairs: handles from problem text, edge curves from the faces
+// beside them, vertices where their faces meet, and the local consistency check.
+#include "geometry/curve.h"
+#include "geometry/intersect.h"
+#include "geometry/meet_point.h"
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+#include "repair/beautify_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <variant>
+
+namespace kintsugi::detail {
+
+namespace {
+
+std::optional<std::uint32_t> parse_index(const std::string& s, char prefix) {
+  if (s.size() < 2 || s[0] != prefix) return std::nullopt;
+  std::uint64_t v = 0;
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    if (s[i] < '0' || s[i] > '9') return std::nullopt;
+    v = v * 10 + std::uint64_t(s[i] - '0');
+    if (v >= 0xffffffffu) return std::nullopt;
+  }
+  return std::uint32_t(v);
+}
+
+std::string fmt(double d) {
+  std::ostringstream os;
+  os.precision(3);
+  os << d;
+  return os.str();
+}
+
+bool is_plane(const geo::Surface& s) { return std::holds_alternative<geo::Plane>(s); }
+
+geo::Curve reversed(const geo::Curve& c) {
+  if (auto* l = std::get_if<geo::Line>(&c)) return geo::Line{l->origin, -l->direction};
+  if (auto* ci = std::get_if<geo::Circle>(&c)) {
+    geo::Circle r = *ci;
+    r.frame.z = -r.frame.z;  // y = z × x flips: the parameter runs the other way
+    return r;
+  }
+  if (auto* e = std::get_if<geo::Ellipse>(&c)) {
+    geo::Ellipse r = *e;
+    r.frame.z = -r.frame.z;
+    return r;
+  }
+  if (auto* p = std::get_if<geo::Polyline>(&c)) {
+    geo::Polyline r = *p;
+    std::reverse(r.points.begin(), r.points.end());
+    return r;
+  }
+  return c;
+}
+
+}  // namespace
+
+VertexH parse_vertex(const std::string& s) {
+  auto i = parse_index(s, 'v');
+  return i ? VertexH(*i) : VertexH{};
+}
+EdgeH parse_edge(const std::string& s) {
+  auto i = parse_index(s, 'e');
+  return i ? EdgeH(*i) : EdgeH{};
+}
+FaceH parse_face(const std::string& s) {
+  auto i = parse_index(s, 'f');
+  return i ? FaceH(*i) : FaceH{};
+}
+
+std::vector<FaceH> faces_around(const Body& b, VertexH v) {
+  std::vector<FaceH> out;
+  for (HalfedgeH h : b.outgoing(v))
+    for (HalfedgeH s : {h, twin(h)}) {
+      FaceH f = b.face(s);
+      if (f.valid() && std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
+    }
+  return out;
+}
+
+double face_area(const Body& b, FaceH f, const geo::Tolerances& tol) {
+  geo::RegionMeasure m = face_measure(b, f, 1e-3 * tol.length);
+  return m.ok() ? m.area : HUGE_VAL;
+}
+
+std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::Tolerances& tol, std::string* why) {
+  HalfedgeH h = halfedge_of(e, 0);
+  const geo::Vec3 p0 = b.point(b.origin(h)), p1 = b.point(b.target(h));
+  FaceH f = b.face(h), g = b.face(twin(h));
+  const geo::Curve& old = b.curve(e);
+  const bool closed = b.origin(h) == b.target(h);
+  if (!f.valid() || !g.valid() || f == g) {
+    // A gap's edge or a seam: no pair of faces to intersect. Lines follow their vertices.
+    if (std::holds_alternative<geo::Line>(old) && !closed && (p1 - p0).norm() > 0)
+      return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
+    return old;
+  }
+  const geo::Surface &sf = b.surface(f), &sg = b.surface(g);
+  if (std::holds_alternative<std::monostate>(sf) || std::holds_alternative<std::monostate>(sg)) {
+    *why = e.str() + ": a face beside it has no surface";
+    return std::nullopt;
+  }
+  if (is_plane(sf) && is_plane(sg) && !closed) {
+    if ((p1 - p0).norm() <= tol.precision) {
+      *why = e.str() + ": its vertices coincide";
+      return std::nullopt;
+    }
+    return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
+  }
+  // The region: the vertices and the present curve, with a margin.
+  geo::Box region;
+  region.add(p0);
+  region.add(p1);
+  if (!std::holds_alternative<std::monostate>(old)) {
+    if (geo::is_closed(old) || closed) {
+      for (const auto& q : geo::sample_curve(old, 0, geo::period(old) > 0 ? geo::period(old) : 1.0, tol.length))
+        region.add(q);
+    } else {
+      for (const auto& q : halfedge_polyline(b, h, tol.length)) region.add(q);
+    }
+  }
+  const double margin = std::max(0.25 * region.diagonal(), 10 * tol.length);
+  region.min.array() -= margin;
+  region.max.array() += margin;
+  auto curves = geo::intersect(sf, sg, geo::IntersectOptions::for_model(tol, region));
+  auto pick = geo::select_branch(curves, p0, p1);
+  if (!pick || pick->distance > tol.length) {
+    *why = e.str() + ": the surfaces of " + f.str() + " and " + g.str() + " do not meet along it" +
+           (pick ? " (nearest branch " + fmt(pick->distance) + " away)" : "");
+    return std::nullopt;
+  }
+  geo::Curve c = curves[pick->index];
+  // Orientation: like the edge's present curve at its start (the curve runs along h).
+  geo::Vec3 want = (p1 - p0);
+  if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
+  if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);
+  return c;
+}
+
+std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Vec3>>& guesses,
+                           const geo::Tolerances& tol, double max_move, Touched& touched,
+                           const std::set<FaceH>& ignore) {
+  std::vector<std::pair<VertexH, geo::Vec3>> points;
+  for (auto [v, guess] : guesses) {
+    std::vector<geo::Surface> surfaces;
+    for (FaceH f : faces_around(b, v))
+      if (!ignore.count(f)) surfaces.push_back(b.surface(f));
+    geo::Vec3 p = guess;
+    if (!surfaces.empty()) {
+      geo::MeetPoint m = geo::meet_point(surfaces, guess, tol.length, tol.precision);
+      if (m.status == geo::MeetStatus::no_point || m.status == geo::MeetStatus::degenerate)
+        return "the faces around " + v.str() + " do not meet in a point within tolerance: " + m.problem;
+      p = m.point;
+    }
+    if ((p - guess).norm() > max_move)
+      return "the faces around " + v.str() + " meet " + fmt((p - guess).norm()) + " away from where it should be";
+    points.push_back({v, p});
+  }
+  for (auto [v, p] : points) {
+    b.set_point(v, p);
+    touched.vertices.insert(v);
+  }
+  std::set<EdgeH> edges;
+  for (auto [v, p] : points)
+    for (HalfedgeH h : b.outgoing(v)) edges.insert(edge_of(h));
+  for (EdgeH e : edges) {
+    std::string why;
+    auto c = derive_edge_curve(b, e, tol, &why);
+    if (!c) return why;
+    b.set_curve(e, *c);
+    touched.edges.insert(e);
+  }
+  return "";
+}
+
+double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& tol, std::string* why) {
+  std::set<VertexH> vs;
+  std::set<EdgeH> es;
+  std::set<FaceH> fs;
+  for (VertexH v : t.vertices)
+    if (b.alive(v)) {
+      vs.insert(v);
+      for (HalfedgeH h : b.outgoing(v)) {
+        es.insert(edge_of(h));
+        for (HalfedgeH s : {h, twin(h)})
+          if (b.face(s).valid()) fs.insert(b.face(s));
+      }
+    }
+  for (EdgeH e : t.edges)
+    if (b.alive(e)) {
+      es.insert(e);
+      for (unsigned s = 0; s < 2; ++s)
+        if (b.face(halfedge_of(e, s)).valid()) fs.insert(b.face(halfedge_of(e, s)));
+    }
+  for (FaceH f : t.faces)
+    if (b.alive(f)) fs.insert(f);
+  for (EdgeH e : es) {
+    HalfedgeH h = halfedge_of(e, 0);
+    vs.insert(b.origin(h));
+    vs.insert(b.target(h));
+  }
+  double worst = 0.0;
+  auto note = [&](double d) { worst = std::max(worst, std::isfinite(d) ? d : HUGE_VAL); };
+  for (FaceH f : fs) {
+    if (std::holds_alternative<std::monostate>(b.surface(f))) {
+      *why = f.str() + " has no surface";
+      return HUGE_VAL;
+    }
+    // A face whose outer loop has fewer than three sides, all straight, has no area.
+    auto hs = b.loop_halfedges(b.outer_loop(f));
+    if (!hs.empty() && hs.size() < 3 &&
+        std::all_of(hs.begin(), hs.end(), [&](HalfedgeH h) { return std::holds_alternative<geo::Line>(b.curve(edge_of(h))); })) {
+      *why = f.str() + " would be left with " + std::to_string(hs.size()) + " straight side(s)";
+      return HUGE_VAL;
+    }
+  }
+  for (VertexH v : vs) {
+    const geo::Vec3& p = b.point(v);
+    for (HalfedgeH h : b.outgoing(v)) {
+      const geo::Curve& c = b.curve(edge_of(h));
+      if (!std::holds_alternative<std::monostate>(c)) note(geo::closest_point(c, p).distance);
+      for (HalfedgeH s : {h, twin(h)})
+        if (b.face(s).valid()) note(std::abs(geo::signed_distance(b.surface(b.face(s)), p)));
+    }
+  }
+  for (EdgeH e : es) {
+    if (std::holds_alternative<std::monostate>(b.curve(e))) {
+      *why = e.str() + " has no curve";
+      return HUGE_VAL;
+    }
+    HalfedgeH h = halfedge_of(e, 0);
+    auto pts = halfedge_polyline(b, h, tol.length * 0.1);
+    std::vector<geo::Vec3> probes;
+    if (pts.size() == 2) {
+      for (double s : {0.25, 0.5, 0.75}) probes.push_back(pts[0] + s * (pts[1] - pts[0]));
+    } else {
+      probes = pts;
+    }
+    for (HalfedgeH s : {h, twin(h)}) {
+      if (!b.face(s).valid()) continue;
+      for (const auto& q : probes) note(std::abs(geo::signed_distance(b.surface(b.face(s)), q)));
+    }
+  }
+  return worst;
+}
+
+std::vector<Problem> follow_ups(const Body& b, const geo::Tolerances& tol, ProblemType t, const Touched& touched) {
+  // Table 1's diagonal: only these two passes can make more of their own kind (a merged
+  // face may match another neighbour; a moved vertex may shorten an edge at it).
+  if (t == ProblemType::same_geometry_faces) return same_geometry_follow_ups(b, tol, touched);
+  if (t == ProblemType::short_edge) return short_edge_follow_ups(b, tol, touched);
+  return {};
+}
+
+}  // namespace kintsugi::detail

@@ -1,0 +1,34 @@
+// Pass 10, mergeable edges (paper 4.5): a vertex on exactly two edges that separate the
+// same two faces is removed by jekv, and the union gets the curve where the two faces
+// meet (the line through its vertices for two planes). A closed curve keeps one vertex:
+// jekv refuses to join an edge with itself, so a self-loop is never joined.
+#include "kernel/euler.h"
+#include "repair/beautify_detail.h"
+
+#include <variant>
+
+namespace kintsugi::detail {
+
+std::string repair_mergeable_edges(RepairCall& c) {
+  Body& b = c.b;
+  if (c.problem.elements.empty()) return "no vertex named";
+  VertexH v = parse_vertex(c.problem.elements[0]);
+  if (!b.alive(v)) return "no longer present: " + c.problem.elements[0] + " was removed by an earlier repair";
+  auto outs = b.outgoing(v);
+  if (outs.size() != 2) return v.str() + " no longer lies on exactly two edges";
+  if (edge_of(outs[0]) == edge_of(outs[1])) return v.str() + " is the only vertex of a closed edge: kept";
+  HalfedgeH h = b.prev(outs[0]);  // ends at v; next(h) = outs[0] leaves it
+  EdgeH keep = edge_of(h), gone = edge_of(outs[0]);
+  const bool same_curve = b.curve(keep) == b.curve(gone);
+  auto r = euler::jekv(b, h);
+  if (!r) return std::string("jekv refused: ") + r.error().message;
+  c.touched.edges.insert(keep);
+  if (same_curve && !std::holds_alternative<geo::Line>(b.curve(keep))) return "";  // one circle cut in two
+  std::string why;
+  auto curve = derive_edge_curve(b, keep, c.tol, &why);
+  if (!curve) return why;
+  b.set_curve(keep, *curve);
+  return "";
+}
+
+}  // namespace kintsugi::detail

@@ -1,0 +1,146 @@
+// Pass 8, adjacent faces with the same geometry (paper 4.5): every edge between the two
+// faces is removed (kef for the first, which kills the second face; then struts left
+// hanging are killed with kev and edges that still separate the face from itself become
+// rings with kemr). The union's surface is a least-squares fit over both faces'
+// boundary samples (geo::fit_surface_like, the type of the surviving face); the merged
+// face's vertices move to where their faces now meet (at most the tolerance), and the
+// edges there get curves through them. Vertices left on two edges are for pass 10.
+#include "geometry/same_geometry.h"
+#include "invariants/element_geometry.h"
+#include "kernel/euler.h"
+#include "repair/beautify_detail.h"
+
+#include <variant>
+
+namespace kintsugi::detail {
+
+namespace {
+
+std::vector<geo::Vec3> samples(const Body& b, FaceH f, const geo::Tolerances& tol) {
+  std::vector<geo::Vec3> pts;
+  for (const auto& loop : face_boundary(b, f, 0.1 * tol.length)) pts.insert(pts.end(), loop.begin(), loop.end());
+  return pts;
+}
+
+// Edges with f on one side and g on the other.
+std::vector<EdgeH> common_edges(const Body& b, FaceH f, FaceH g) {
+  std::vector<EdgeH> out;
+  for (LoopH l : b.loops_of(f))
+    for (HalfedgeH h : b.loop_halfedges(l))
+      if (b.face(twin(h)) == g) out.push_back(edge_of(h));
+  return out;
+}
+
+}  // namespace
+
+std::string repair_same_geometry(RepairCall& c) {
+  Body& b = c.b;
+  if (c.problem.elements.size() < 2) return "two faces needed";
+  FaceH f = parse_face(c.problem.elements[0]), g = parse_face(c.problem.elements[1]);
+  if (!b.alive(f) || !b.alive(g)) return "no longer present: a face was removed by an earlier repair";
+  if (f == g) return "one face";
+  if (b.surface(f).index() != b.surface(g).index()) return "the surfaces are of different types";
+  auto common = common_edges(b, f, g);
+  if (common.empty()) return f.str() + " and " + g.str() + " are no longer adjacent";
+  std::vector<geo::Vec3> pts = samples(b, f, c.tol), pg = samples(b, g, c.tol);
+  if (geo::surface_deviation(b.surface(f), b.surface(g), pts, pg) > c.tol.length)
+    return "the surfaces of " + f.str() + " and " + g.str() + " no longer agree within tolerance";
+  // Neighbours with nearly the same surface as either face (detected pairs still queued
+  // for merging) stay out of the vertices' meeting points: nearly parallel surfaces meet
+  // ill-conditioned.
+  std::set<FaceH> alike;
+  for (auto [x, px] : {std::pair{f, &pts}, std::pair{g, &pg}})
+    for (LoopH l : b.loops_of(x))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        FaceH n = b.face(twin(h));
+        if (n.valid() && n != f && n != g && !alike.count(n) && b.surface(n).index() == b.surface(x).index() &&
+            geo::surface_deviation(b.surface(x), b.surface(n), *px, samples(b, n, c.tol)) <= c.tol.length)
+          alike.insert(n);
+      }
+  pts.insert(pts.end(), pg.begin(), pg.end());
+  // Kill the first common edge whose side in g is g's outer loop (kef's precondition);
+  // else the other way round.
+  HalfedgeH first;
+  for (EdgeH e : common)
+    for (unsigned s = 0; s < 2 && !first.valid(); ++s) {
+      HalfedgeH h = halfedge_of(e, s);
+      if (b.face(h) == f && b.is_outer(b.loop(twin(h)))) first = h;
+    }
+  if (!first.valid()) {
+    std::swap(f, g);
+    for (EdgeH e : common)
+      for (unsigned s = 0; s < 2 && !first.valid(); ++s) {
+        HalfedgeH h = halfedge_of(e, s);
+        if (b.face(h) == f && b.is_outer(b.loop(twin(h)))) first = h;
+      }
+  }
+  if (!first.valid()) return "no common edge lies on either face's outer loop";
+  geo::SurfaceFit fit = geo::fit_surface_like(b.surface(f), pts);
+  if (!fit.converged) return "no surface fits both faces: " + fit.problem;
+  if (fit.max_deviation > c.tol.length) return "the best common surface is " + std::to_string(fit.max_deviation) + " from the faces";
+  std::vector<VertexH> ends;
+  for (EdgeH e : common)
+    for (unsigned s = 0; s < 2; ++s) ends.push_back(b.origin(halfedge_of(e, s)));
+  EdgeH first_edge = edge_of(first);
+  auto k = euler::kef(b, first);
+  if (!k) return std::string("kef refused: ") + k.error().message;
+  // The rest: f on both sides now. Struts first (kev towards the hanging vertex), then rings.
+  std::vector<EdgeH> rest;
+  for (EdgeH e : common)
+    if (e != first_edge) rest.push_back(e);
+  for (std::size_t guard = 0; !rest.empty() && guard < 4 * common.size() + 4; ++guard) {
+    bool progress = false;
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      HalfedgeH h = halfedge_of(rest[i], 0);
+      HalfedgeH toward;  // kev(toward) kills target(toward)
+      if (b.degree(b.target(h)) == 1) toward = h;
+      else if (b.degree(b.origin(h)) == 1) toward = twin(h);
+      if (!toward.valid()) continue;
+      auto r = euler::kev(b, toward);
+      if (!r) return std::string("kev refused: ") + r.error().message;
+      rest.erase(rest.begin() + std::ptrdiff_t(i));
+      progress = true;
+      break;
+    }
+    if (progress) continue;
+    auto r = euler::kemr(b, halfedge_of(rest.front(), 0));
+    if (!r) return std::string("kemr refused: ") + r.error().message;
+    rest.erase(rest.begin());
+  }
+  if (!rest.empty()) return "common edges could not all be removed";
+  b.set_surface(f, fit.surface, b.same_sense(f));
+  c.touched.faces.insert(f);
+  std::vector<std::pair<VertexH, geo::Vec3>> guesses;
+  std::set<VertexH> seen;
+  for (LoopH l : b.loops_of(f))
+    for (VertexH v : b.loop_vertices(l))
+      if (seen.insert(v).second) guesses.push_back({v, b.point(v)});
+  for (VertexH v : ends)
+    if (b.alive(v) && seen.insert(v).second) guesses.push_back({v, b.point(v)});
+  return place_vertices(b, guesses, c.tol, c.tol.length, c.touched, alike);
+}
+
+std::vector<Problem> same_geometry_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched) {
+  std::vector<Problem> out;
+  for (FaceH f : touched.faces) {
+    if (!b.alive(f)) continue;
+    std::set<FaceH> nbrs;
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        FaceH g = b.face(twin(h));
+        if (g.valid() && g != f) nbrs.insert(g);
+      }
+    auto pf = samples(b, f, tol);
+    for (FaceH g : nbrs) {
+      if (b.surface(f).index() != b.surface(g).index()) continue;
+      double dev = geo::surface_deviation(b.surface(f), b.surface(g), pf, samples(b, g, tol));
+      if (dev <= tol.length) {
+        auto key = std::minmax(f, g);
+        out.push_back({ProblemType::same_geometry_faces, {key.first.str(), key.second.str()}, dev, "distance", ""});
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace kintsugi::detail

@@ -1,0 +1,231 @@
+// Beautification, passes 7-11: the paper's objects 6 and 7, coplanar faces, cut edges,
+// random injected defects (nothing of types 7-11 left, topology valid), clean models
+// unchanged, idempotence, exact rollback of a failed repair, and Table 1's ordering.
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+#include "invariants/topology_check.h"
+#include "kernel/builders.h"
+#include "repair/beautify.h"
+#include "repair/detect.h"
+#include "zoo/zoo.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace kintsugi {
+namespace {
+
+geo::Tolerances tol_for(const Body& b, double t) { return geo::Tolerances::for_model(t, model_size(b)); }
+
+std::string describe(const BeautifyReport& r) {
+  std::string s;
+  for (const auto& p : r.problems) {
+    s += std::string(problem_name(p.type)) + " [";
+    for (const auto& e : p.elements) s += e + " ";
+    s += "] " + p.action + (p.reason.empty() ? "" : ": " + p.reason) + "\n";
+  }
+  return s;
+}
+
+int count_7_to_11(const Detection& d) {
+  int n = 0;
+  for (int k = 7; k <= 11; ++k) n += d.counts[std::size_t(k - 1)];
+  return n;
+}
+
+const std::vector<ProblemType> kImplemented = {ProblemType::short_edge_chain, ProblemType::same_geometry_faces,
+                                               ProblemType::small_face, ProblemType::mergeable_edges,
+                                               ProblemType::short_edge};
+
+TEST(Beautify, PaperObjects6And7BecomeTheFourSidedPyramid) {
+  for (int n : {6, 7}) {
+    zoo::ZooModel m = zoo::paper_object(n, false);
+    geo::Tolerances tol = tol_for(m.body, m.tolerance);
+    BeautifyReport r = beautify(m.body, tol);
+    Counts c = m.body.counts();
+    EXPECT_EQ(c.faces, 5u) << "object " << n << "\n" << describe(r);
+    EXPECT_EQ(c.edges, 8u) << "object " << n << "\n" << describe(r);
+    EXPECT_EQ(c.vertices, 5u) << "object " << n << "\n" << describe(r);
+    EXPECT_TRUE(check_topology(m.body).empty());
+    VertexH apex;
+    for (VertexH v : m.body.vertices())
+      if (m.body.degree(v) == 4) apex = v;
+    ASSERT_TRUE(apex.valid()) << "object " << n;
+    int sloping = 0;
+    for (HalfedgeH h : m.body.outgoing(apex)) {
+      FaceH f = m.body.face(h);
+      ++sloping;
+      EXPECT_LE(std::abs(geo::signed_distance(m.body.surface(f), m.body.point(apex))), m.tolerance) << f;
+    }
+    EXPECT_EQ(sloping, 4);
+    EXPECT_LE(r.max_deviation, m.tolerance);
+    EXPECT_EQ(count_7_to_11(detect(m.body, tol)), 0);
+  }
+}
+
+TEST(Beautify, CoplanarFacesBecomeOneFaceWithoutTwoValentVertices) {
+  Body b = build::grid_box(24);  // every side in 4 coplanar quads
+  BeautifyReport r = beautify(b, tol_for(b, 0.01));
+  Counts c = b.counts();
+  EXPECT_EQ(c.faces, 6u) << describe(r);
+  EXPECT_EQ(c.edges, 12u) << describe(r);
+  EXPECT_EQ(c.vertices, 8u) << describe(r);
+  EXPECT_TRUE(check_topology(b).empty());
+  // One injected pair of nearly coplanar faces (a face fitted twice).
+  Body p = build::prism(build::regular_polygon(6, 1), 1);
+  const Counts clean = p.counts();
+  std::string err;
+  ASSERT_TRUE(zoo::inject(p, ProblemType::same_geometry_faces, 3, std::nullopt, 0.02, &err)) << err;
+  BeautifyReport r2 = beautify(p, tol_for(p, 0.02));
+  EXPECT_EQ(p.counts(), clean) << describe(r2);
+}
+
+TEST(Beautify, EdgeCutIntoShortPiecesBecomesOneEdge) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    Body b = build::box(1, 1, 1);
+    const Counts clean = b.counts();
+    std::string err;
+    auto inj = zoo::inject(b, ProblemType::short_edge_chain, seed, std::nullopt, 0.02, &err);
+    ASSERT_TRUE(inj) << err;
+    ASSERT_GT(b.counts().edges, clean.edges);
+    BeautifyReport r = beautify(b, tol_for(b, 0.02));
+    EXPECT_EQ(b.counts(), clean) << inj->description << "\n" << describe(r);
+    bool chain_repaired = false;
+    for (const auto& p : r.problems)
+      chain_repaired = chain_repaired || (p.type == ProblemType::short_edge_chain && p.action == "repaired");
+    EXPECT_TRUE(chain_repaired) << describe(r);
+  }
+}
+
+Body random_solid(int which) {
+  switch (which) {
+    case 0: return build::box(1, 1, 1);
+    case 1: return build::prism(build::regular_polygon(6, 1), 1);
+    case 2: return build::pyramid(build::regular_polygon(4, 1), 1);
+    case 3: return build::prism(build::regular_polygon(5, 1), 2);
+    case 4: return build::cylinder(1, 2);
+    default: return build::pyramid(build::regular_polygon(5, 1), 1.5);
+  }
+}
+
+// A builder solid with 1-3 injected defects of types 7-11.
+Body defective(double t, std::string* what) {
+  Body b = random_solid(*rc::gen::inRange(0, 6));
+  const int n = *rc::gen::inRange(1, 4);
+  int made = 0;
+  for (int i = 0; i < n; ++i) {
+    ProblemType type = *rc::gen::elementOf(kImplemented);
+    std::string err;
+    auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &err);
+    if (inj) {
+      ++made;
+      *what += std::string(problem_name(type)) + ": " + inj->description + "\n";
+    }
+  }
+  RC_PRE(made > 0);
+  // Defects injected next to each other can make problems of types 1-6 (a short edge
+  // beside a split face pinches it): those need passes not implemented yet.
+  Detection d = detect(b, tol_for(b, t));
+  for (int k = 1; k <= 6; ++k) RC_PRE(d.counts[std::size_t(k - 1)] == 0);
+  return b;
+}
+
+RC_GTEST_PROP(Beautify, InjectedDefectsOfTypes7To11AreRepaired, ()) {
+  const double t = 0.02;
+  std::string what;
+  Body b = defective(t, &what);
+  geo::Tolerances tol = tol_for(b, t);
+  BeautifyReport r = beautify(b, tol);
+  RC_ASSERT(check_topology(b).empty());
+  Detection d = detect(b, tol);
+  if (count_7_to_11(d) != 0) RC_FAIL("left after beautify:\n" + what + describe(r));
+  RC_ASSERT(r.max_deviation <= t);
+}
+
+RC_GTEST_PROP(Beautify, CleanModelIsUnchangedAndBeautifyIsIdempotent, ()) {
+  const double t = 0.02;
+  Body clean = random_solid(*rc::gen::inRange(0, 6));
+  Body copy = clean.clone();
+  beautify(copy, tol_for(copy, t));
+  std::string why;
+  RC_ASSERT(copy.equals(clean, &why));
+  std::string what;
+  Body b = defective(t, &what);
+  geo::Tolerances tol = tol_for(b, t);
+  beautify(b, tol);
+  Body once = b.clone();
+  BeautifyReport again = beautify(b, tol);
+  if (!b.equals(once, &why)) RC_FAIL("second beautify changed the body: " + why + "\n" + describe(again));
+}
+
+TEST(Beautify, FailedRepairRollsBackExactly) {
+  zoo::ZooModel m = zoo::paper_object(6, false);
+  Body before = m.body.clone();
+  BeautifyOptions opt;
+  opt.veto = [](const Body&, ProblemType) { return std::string("forced failure"); };
+  BeautifyReport r = beautify(m.body, tol_for(m.body, m.tolerance), opt);
+  std::string why;
+  EXPECT_TRUE(m.body.equals(before, &why)) << why;
+  ASSERT_FALSE(r.problems.empty());
+  for (const auto& p : r.problems) {
+    EXPECT_EQ(p.action, "not repaired");
+    EXPECT_TRUE(p.operators.empty());
+  }
+  EXPECT_EQ(r.repaired(), 0);
+  // Without the hook the same model is repaired.
+  Body again = before.clone();
+  EXPECT_GT(beautify(again, tol_for(again, m.tolerance)).repaired(), 0);
+}
+
+TEST(Beautify, FailedRepairOnRandomModelsRollsBackExactly) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    for (ProblemType type : kImplemented) {
+      Body b = build::prism(build::regular_polygon(5, 1), 1);
+      std::string err;
+      if (!zoo::inject(b, type, seed, std::nullopt, 0.02, &err)) continue;
+      Body before = b.clone();
+      BeautifyOptions opt;
+      opt.veto = [](const Body&, ProblemType) { return std::string("forced failure"); };
+      beautify(b, tol_for(b, 0.02), opt);
+      std::string why;
+      EXPECT_TRUE(b.equals(before, &why)) << problem_name(type) << " seed " << seed << ": " << why;
+    }
+  }
+}
+
+// Table 1: fixing the problems of pass k creates only problems listed in can_cause[k],
+// and every one of those comes later in the order: never one whose pass ran before.
+RC_GTEST_PROP(Beautify, PassesCreateNoProblemOfAnEarlierType, ()) {
+  static const nlohmann::json table = [] {
+    std::ifstream in(std::string(KINTSUGI_SPEC_DIR) + "/table1.json");
+    return nlohmann::json::parse(in);
+  }();
+  const double t = 0.02;
+  std::string what;
+  Body b = defective(t, &what);
+  geo::Tolerances tol = tol_for(b, t);
+  const ProblemType pass = *rc::gen::elementOf(kImplemented);
+  // Bring the body to the state the pass sees in the pipeline: the passes before it run.
+  BeautifyReport r;
+  for (ProblemType earlier : kImplemented)
+    if (problem_order(earlier) < problem_order(pass)) run_pass(b, tol, earlier, r);
+  Detection before = detect(b, tol);
+  run_pass(b, tol, pass, r);
+  Detection after = detect(b, tol);
+  const auto& may = table["can_cause"][problem_name(pass)];
+  for (ProblemType x : kAllProblemTypes) {
+    if (after.count(x) <= before.count(x)) continue;
+    bool listed = false;
+    for (const auto& y : may) listed = listed || y.get<std::string>() == problem_name(x);
+    if (problem_order(x) <= problem_order(pass) || !listed)
+      RC_FAIL(std::string("pass ") + problem_name(pass) + " created " + problem_name(x) + "\n" + what + describe(r));
+  }
+}
+
+}  // namespace
+}  // namespace kintsugi
