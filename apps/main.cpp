@@ -13,6 +13,8 @@ const std::vector<Command>& commands() {
       {"check", "check a model's topology and geometry", cmd_check},
       {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
       {"detect", "find the eleven kinds of topological problem", cmd_detect},
+      {"beautify", "repair the topology (passes 7-11 of the paper so far)", cmd_beautify},
+      {"demo", "beautify the paper's test objects and compare with the expected counts", cmd_demo},
       {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
   };
   return table;
