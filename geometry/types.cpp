@@ -7,6 +7,9 @@ template <class... Fs>
 struct Overload : Fs... {
   using Fs::operator()...;
 };
+// clang before 17 does not deduce aggregate template arguments without this guide.
+template <class... Fs>
+Overload(Fs...) -> Overload<Fs...>;
 }  // namespace
 
 const char* surface_type_name(const Surface& s) {

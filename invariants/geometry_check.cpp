@@ -79,14 +79,16 @@ GeometryReport check_geometry(const Body& b, double precision) {
   for (EdgeH e : b.edges()) {
     if (!has_curve(b, e)) continue;
     HalfedgeH h = halfedge_of(e, 0);
-    // Sample points lie on the curve whatever the chordal error: a coarse one gives a few probes.
-    std::vector<geo::Vec3> pts = halfedge_polyline(b, h, std::max(precision, 1e-300) * 1e5);
+    // Probes are points of the curve itself between the edge's ends (never of a chord,
+    // which would be a sagitta off a curved surface).
     std::vector<geo::Vec3> probes;
-    if (pts.size() == 2) {
-      for (double s : {0.25, 0.5, 0.75}) probes.push_back(pts[0] + s * (pts[1] - pts[0]));
+    const geo::Vec3 &p0 = b.point(b.origin(h)), &p1 = b.point(b.target(h));
+    if (std::holds_alternative<geo::Line>(b.curve(e))) {
+      for (double s : {0.25, 0.5, 0.75}) probes.push_back(p0 + s * (p1 - p0));
     } else {
-      std::size_t step = std::max<std::size_t>(1, pts.size() / 6);
-      for (std::size_t i = 1; i + 1 < pts.size(); i += step) probes.push_back(pts[i]);
+      double coincide = b.origin(h) == b.target(h) ? std::max(precision, 1e-300) : 0.0;
+      geo::ParameterRange r = geo::parameter_range(b.curve(e), p0, p1, coincide);
+      for (double s : {0.125, 0.25, 0.5, 0.75, 0.875}) probes.push_back(geo::evaluate(b.curve(e), r.t0 + s * (r.t1 - r.t0)));
     }
     double slack = polyline_chordal(b.curve(e));
     for (HalfedgeH side : {h, twin(h)}) {

@@ -81,3 +81,26 @@ RC_GTEST_PROP(GeometryCheck, ScaleInvariance, ()) {
 
 }  // namespace
 }  // namespace kintsugi
+
+namespace kintsugi {
+namespace {
+
+// A short arc of a circle on a cylinder: its chord is a sagitta away from the surface,
+// the arc itself is on it. The check must probe the arc.
+TEST(GeometryCheck, ShortArcsAreProbedOnTheCurveNotTheChord) {
+  Body b = build::cylinder(3, 1);
+  for (EdgeH e : b.edges()) {
+    if (!std::holds_alternative<geo::Circle>(b.curve(e))) continue;
+    HalfedgeH h = halfedge_of(e, 0);
+    const auto& c = std::get<geo::Circle>(b.curve(e));
+    // Cut the circle at 0.05 rad: a short arc from the seam vertex to the new vertex.
+    geo::Vec3 p = c.frame.origin + c.radius * (std::cos(0.05) * c.frame.x + std::sin(0.05) * c.frame.y());
+    ASSERT_TRUE(euler::semv(b, h, p));
+    break;
+  }
+  GeometryReport r = check_geometry(b, 3e-7);
+  for (const auto& v : r.violations) ADD_FAILURE() << to_string(v);
+}
+
+}  // namespace
+}  // namespace kintsugi
