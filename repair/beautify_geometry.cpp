@@ -3,6 +3,7 @@
 #include "geometry/curve.h"
 #include "geometry/intersect.h"
 #include "geometry/meet_point.h"
+#include "geometry/same_geometry.h"
 #include "geometry/surface.h"
 #include "invariants/element_geometry.h"
 #include "repair/beautify_detail.h"
@@ -162,6 +163,29 @@ std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Ve
   for (auto [v, p] : points) {
     b.set_point(v, p);
     touched.vertices.insert(v);
+  }
+  // A least-squares point is off each surface by its residual. A planar face bounded by
+  // straight edges whose vertices still lie on one plane (always, for a triangle) gets
+  // that plane, so the geometry stays consistent to the modelling precision.
+  std::set<FaceH> planar;
+  for (auto [v, p] : points)
+    for (FaceH f : faces_around(b, v))
+      if (std::holds_alternative<geo::Plane>(b.surface(f))) planar.insert(f);
+  for (FaceH f : planar) {
+    std::vector<geo::Vec3> corners;
+    bool straight = true, off = false;
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        corners.push_back(b.point(b.origin(h)));
+        straight = straight && std::holds_alternative<geo::Line>(b.curve(edge_of(h)));
+        off = off || std::abs(geo::signed_distance(b.surface(f), corners.back())) > tol.precision;
+      }
+    if (!straight || !off || corners.size() < 3) continue;
+    geo::SurfaceFit fit = geo::fit_surface_like(b.surface(f), corners);
+    if (fit.converged && fit.max_deviation <= tol.precision) {
+      b.set_surface(f, fit.surface, b.same_sense(f));
+      touched.faces.insert(f);
+    }
   }
   std::set<EdgeH> edges;
   for (auto [v, p] : points)

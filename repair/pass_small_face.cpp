@@ -38,6 +38,7 @@ std::string repair_small_face(RepairCall& c) {
   // kev until two edges are left.
   while (b.loop_halfedges(b.outer_loop(f)).size() > 2) {
     HalfedgeH h = b.first(b.outer_loop(f));
+    if (b.degree(b.origin(h)) == 1) h = twin(h);  // kev keeps origin(h): keep the one with edges
     auto r = euler::kev(b, h);
     if (!r) return std::string("kev refused: ") + r.error().message;
   }
@@ -47,6 +48,7 @@ std::string repair_small_face(RepairCall& c) {
   auto k = euler::kef(b, twin(two[0]));
   if (!k) return std::string("kef refused: ") + k.error().message;
   HalfedgeH last = two[1];
+  if (b.degree(b.origin(last)) == 1) last = twin(last);
   VertexH keep = b.origin(last);
   auto r = euler::kev(b, last);
   if (!r) return std::string("kev refused: ") + r.error().message;
