@@ -25,6 +25,7 @@ int cmd_check(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_inject(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_measure(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_detect(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_convert(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_beautify(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_demo(const std::vector<std::string>&, std::ostream&, std::ostream&);
 

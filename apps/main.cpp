@@ -15,6 +15,7 @@ const std::vector<Command>& commands() {
       {"detect", "find the eleven kinds of topological problem", cmd_detect},
       {"beautify", "repair the topology (passes 7-11 of the paper so far)", cmd_beautify},
       {"demo", "beautify the paper's test objects and compare with the expected counts", cmd_demo},
+      {"convert", "convert between .json, .step/.stp and .brep", cmd_convert},
       {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
   };
   return table;

@@ -268,7 +268,8 @@ ParameterDomain parameter_domain(const Surface& s, const std::vector<std::vector
     }
   }
   // Holes: lift each into the outer polygon by whole periods.
-  const std::vector<Vec2>& outer = d.polygons.front();
+  // A copy: pushing holes into d.polygons below may reallocate it.
+  const std::vector<Vec2> outer = d.polygons.front();
   for (Unwrapped h : holes) {
     bool placed = false;
     for (int i = -2; i <= 2 && !placed; ++i)

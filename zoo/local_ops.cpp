@@ -33,7 +33,11 @@ std::vector<FaceH> faces_around(const Body& b, VertexH v) {
   return out;
 }
 
-const geo::Plane* plane_of(const Body& b, FaceH f) { return std::get_if<geo::Plane>(&b.surface(f)); }
+// nullptr for a border side (no face) as for a face that is not planar.
+const geo::Plane* plane_of(const Body& b, FaceH f) {
+  if (!b.alive(f)) return nullptr;
+  return std::get_if<geo::Plane>(&b.surface(f));
+}
 
 Vec3 outward_normal(const Body& b, FaceH f) {
   const geo::Plane* p = plane_of(b, f);

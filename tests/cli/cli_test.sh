@@ -34,8 +34,8 @@ for verb in generate check measure detect; do
   contains "usage: kintsugi $verb" "$verb --help shows usage"
 done
 expect 0 "generate --list" -- "$K" generate --list
+for m in box prism pyramid cylinder cone sphere torus grid; do contains "$m" "--list names $m"; done
 for m in box prism pyramid cylinder cone sphere torus grid; do
-  contains "$m" "--list names $m"
   expect 0 "generate $m" -- "$K" generate "$m" -o "$dir/$m.json"
   expect 0 "check $m" -- "$K" check "$dir/$m.json"
   contains "valid" "check $m says valid"
@@ -101,6 +101,21 @@ expect 0 "generate overwrites an ordinary output" -- "$K" generate cone -o "$dir
 expect 0 "check the replaced output" -- "$K" check "$dir/box.json"
 [ "$(md5sum <"$dir/keep.json")" = "$before" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: keep.json changed"; }
 ls "$dir"/.*tmp* >/dev/null 2>&1 && { fail=$((fail + 1)); echo "FAIL: temporary files left behind"; } || pass=$((pass + 1))
+
+# convert: JSON to JSON always; STEP and BREP when this build has OpenCASCADE
+expect 0 "convert json to json" -- "$K" convert "$dir/torus.json" "$dir/torus2.json"
+expect 0 "check the converted file" -- "$K" check "$dir/torus2.json"
+expect 2 "convert onto its input" -- "$K" convert "$dir/torus.json" "$dir/torus.json"
+contains "input" "refusing to overwrite the input is explained"
+if "$K" convert --help | grep -q "STEP"; then
+  for ext in step brep; do
+    expect 0 "convert to $ext" -- "$K" convert "$dir/cylinder.json" "$dir/cylinder.$ext"
+    expect 0 "check $ext with OpenCASCADE's verdict" -- "$K" check "$dir/cylinder.$ext" --occt
+    contains "OpenCASCADE" "check --occt reports OpenCASCADE's verdict"
+  done
+  printf 'ISO-10303-21;\nHEADER;' >"$dir/trunc.step"
+  expect 2 "convert a truncated STEP file" -- "$K" convert "$dir/trunc.step" "$dir/x.json"
+fi
 
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
