@@ -166,10 +166,16 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
 void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
   std::set<std::pair<FaceH, FaceH>> done;
-  auto samples = [&](FaceH f) {
-    std::vector<geo::Vec3> pts;
-    for (const auto& loop : face_boundary(b, f, c.chordal * 100)) pts.insert(pts.end(), loop.begin(), loop.end());
-    return pts;
+  // Each face's boundary samples, made once however many neighbours it is compared with.
+  std::vector<std::vector<geo::Vec3>> cache(b.face_slots());
+  std::vector<std::uint8_t> cached(b.face_slots(), 0);
+  auto samples = [&](FaceH f) -> const std::vector<geo::Vec3>& {
+    if (!cached[f.idx()]) {
+      for (const auto& loop : face_boundary(b, f, c.chordal * 100))
+        cache[f.idx()].insert(cache[f.idx()].end(), loop.begin(), loop.end());
+      cached[f.idx()] = 1;
+    }
+    return cache[f.idx()];
   };
   for (EdgeH e : b.edges()) {
     FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
