@@ -15,6 +15,11 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
   Touched t;
   const auto& h = e.h;
   Journal& j = b.journal_;
+  // Puts back the surface and sense this entry saved for face slot `face`.
+  auto restore_surface = [&](std::uint32_t face) {
+    b.surfaces_[face] = j.surfaces_[e.saved];
+    b.senses_[face] = j.senses_[e.saved];
+  };
   switch (e.op) {
     case Op::mvfs:
       raw_kvfs(b, FaceH(h[1]), t);
@@ -26,8 +31,7 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
       r.loop = h[2];
       r.vertex = h[3];
       raw_mvfs(b, j.points_[e.saved], r, t);
-      b.surfaces_[h[1]] = j.surfaces_[e.saved];
-      b.senses_[h[1]] = j.senses_[e.saved];
+      restore_surface(h[1]);
       break;
     }
     case Op::mev:
@@ -69,8 +73,7 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
         kill(b, m.face);
         lp(b, m.loop).face = FaceH{};
       } else {
-        b.surfaces_[h[1]] = j.surfaces_[e.saved];
-        b.senses_[h[1]] = j.senses_[e.saved];
+        restore_surface(h[1]);
         if (e.extra != kNone && fh.valid()) {
           for (std::uint32_t ring : j.lists_[e.extra]) {
             remove_ring(b, fh, LoopH(ring));
@@ -101,8 +104,7 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
       Reuse r;
       r.face = h[1];
       raw_mfkrh(b, LoopH(h[2]), r, t);
-      b.surfaces_[h[1]] = j.surfaces_[e.saved];
-      b.senses_[h[1]] = j.senses_[e.saved];
+      restore_surface(h[1]);
       break;
     }
     case Op::mfkrh:
@@ -112,8 +114,7 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
       Reuse r;
       r.face = h[0];
       raw_mfkb(b, LoopH(h[1]), r, t);
-      b.surfaces_[h[0]] = j.surfaces_[e.saved];
-      b.senses_[h[0]] = j.senses_[e.saved];
+      restore_surface(h[0]);
       break;
     }
     case Op::mfkb:
@@ -138,8 +139,7 @@ void EulerImpl::undo(Body& b, const JournalEntry& e) {
       b.curves_[h[0]] = j.curves_[e.saved];
       break;
     case Op::set_surface:
-      b.surfaces_[h[0]] = j.surfaces_[e.saved];
-      b.senses_[h[0]] = j.senses_[e.saved];
+      restore_surface(h[0]);
       break;
   }
 }
