@@ -80,7 +80,7 @@ void demo_object(int n, std::ostream& out) {
       m = zoo::paper_object(n, false);
       clean = zoo::paper_object(n, true);
     } catch (const std::exception& e) {
-      out << std::setw(6) << n << "  not built by the zoo yet (" << e.what() << ")\n";
+      out << std::setw(6) << n << "  could not be built (" << e.what() << ")\n";
       return;
     }
     geo::Tolerances tol = geo::Tolerances::for_model(m.tolerance, model_size(m.body));

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <variant>
 
@@ -88,12 +89,46 @@ double distance(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b
   return geo::polyline_polyline(a, b).distance;
 }
 
-struct Pinch {
-  double dist = HUGE_VAL;
+// One pair of edges of a face closer than the tolerance.
+struct ClosePair {
+  double dist;
   HalfedgeH a, b;
-  std::string where;  // necking / spiking / bossing
-  int pairs = 0;      // how many edge pairs come closer than the tolerance
+  const char* where;  // necking / spiking / bossing
 };
+
+bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
+  return b.origin(x) == b.origin(y) || b.origin(x) == b.target(y) || b.target(x) == b.origin(y) ||
+         b.target(x) == b.target(y);
+}
+
+// Close pairs belong to one occurrence of pinching when, side by side, their edges are the
+// same or meet at a vertex: a block's ring edge and its two side edges all come close to
+// the same outer edge at one place; a second block along that edge is another place.
+std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vector<ClosePair>& pairs) {
+  auto near = [&](HalfedgeH x, HalfedgeH y) { return edge_of(x) == edge_of(y) || share_vertex(b, x, y); };
+  auto same_place = [&](const ClosePair& p, const ClosePair& q) {
+    return (near(p.a, q.a) && near(p.b, q.b)) || (near(p.a, q.b) && near(p.b, q.a));
+  };
+  std::vector<std::size_t> group(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) group[i] = i;
+  std::function<std::size_t(std::size_t)> root = [&](std::size_t i) {
+    return group[i] == i ? i : group[i] = root(group[i]);
+  };
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (same_place(pairs[i], pairs[j])) group[root(i)] = root(j);
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<long> index(pairs.size(), -1);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    std::size_t r = root(i);
+    if (index[r] < 0) {
+      index[r] = long(out.size());
+      out.emplace_back();
+    }
+    out[std::size_t(index[r])].push_back(i);
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -112,11 +147,9 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       for (HalfedgeH h : hes.back()) polys.back().push_back(halfedge_polyline(b, h, c.chordal));
     }
     auto len = [&](HalfedgeH h) { return c.edge_length[edge_of(h).idx()]; };
-    Pinch best;
+    std::vector<ClosePair> pairs;
     auto consider = [&](double d, HalfedgeH x, HalfedgeH y, const char* where) {
-      if (!(d < t)) return;
-      best.pairs++;
-      if (d < best.dist) best = {d, x, y, where, best.pairs};
+      if (d < t) pairs.push_back({d, x, y, where});
     };
     for (std::size_t la = 0; la < hes.size(); ++la) {
       const auto& A = hes[la];
@@ -152,14 +185,19 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
             consider(distance(polys[la][i], polys[lb][j]), A[i], hes[lb][j], "bossing");
           }
     }
-    if (!best.a.valid()) continue;
-    bool straight = best.pairs == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
-                    std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
-    out.push_back({ProblemType::pinched_face,
-                   {f.str(), edge_of(best.a).str(), edge_of(best.b).str()},
-                   best.dist,
-                   "distance",
-                   best.where + (straight ? "/straight" : "/complex")});
+    // Each place where the face is pinched is its own problem (the paper resolves
+    // several pinchings of one face one after another), reported at its closest pair.
+    for (const std::vector<std::size_t>& occ : occurrences(b, pairs)) {
+      const ClosePair& best =
+          pairs[*std::min_element(occ.begin(), occ.end(), [&](std::size_t i, std::size_t j) { return pairs[i].dist < pairs[j].dist; })];
+      bool straight = occ.size() == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
+                      std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
+      out.push_back({ProblemType::pinched_face,
+                     {f.str(), edge_of(best.a).str(), edge_of(best.b).str()},
+                     best.dist,
+                     "distance",
+                     std::string(best.where) + (straight ? "/straight" : "/complex")});
+    }
   }
 }
 
@@ -181,6 +219,10 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
     if (!f1.valid() || !f2.valid() || f1 == f2) continue;
     if (b.surface(f1).index() != b.surface(f2).index() || std::holds_alternative<std::monostate>(b.surface(f1))) continue;
+    // Small faces and slivers are removed by their own, earlier repairs (paper 3.2): a
+    // nearly flat chain of small faces is a chain, not also a same-geometry pair.
+    const FaceInfo &i1 = c.faces[f1.idx()], &i2 = c.faces[f2.idx()];
+    if (i1.small || i1.sliver || i2.small || i2.sliver) continue;
     auto key = std::minmax(f1, f2);
     if (!done.insert(key).second) continue;
     double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2));

@@ -2,6 +2,7 @@
 // border cycle that passes a vertex twice is two gaps sharing that vertex: it is split
 // into its fundamental cycles, each its own problem. O(size of the gaps).
 #include "geometry/box.h"
+#include "invariants/element_geometry.h"
 #include "repair/detect_detail.h"
 
 #include <set>
@@ -42,7 +43,9 @@ void detect_gaps(DetectContext& c, std::vector<Problem>& out) {
       geo::Box box;
       for (HalfedgeH h : cycle) {
         faces.insert(b.face(twin(h)));
-        box.add(b.point(b.origin(h)));
+        // Points along the edge, not only its ends: a round gap bounded by one circle
+        // has a single vertex.
+        for (const geo::Vec3& q : halfedge_polyline(b, h, c.chordal)) box.add(q);
       }
       Problem p;
       p.type = faces.size() == 1 ? ProblemType::face_gap

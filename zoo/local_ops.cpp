@@ -200,6 +200,45 @@ FaceH extrude_disc(Body& b, FaceH g, const Vec3& d, double radius, const Vec3& c
   return g;
 }
 
+FaceH raise_cone(Body& b, FaceH g, const Vec3& centre, double r0, double r1, double height) {
+  if (!(0 < r1 && r1 < r0 && height > 0)) throw std::logic_error("raise_cone: need 0 < r1 < r0 and height > 0");
+  Vec3 n = outward_normal(b, g);
+  HalfedgeH h = b.first(b.outer_loop(g));
+  Vec3 x = (b.point(b.origin(h)) - centre).normalized(), top = centre + height * n;
+  MevResult seam = must(euler::mev(b, Corner::before(h), top + r1 * x), "mev (cone seam)");
+  MefResult cap = must(euler::mef(b, Corner::before(seam.y), Corner::before(seam.y)), "mef (cone top)");
+  set_line(b, seam.edge);
+  set_circle(b, cap.b, top, n);  // the top disc's loop is [b], counter-clockwise
+  set_plane(b, cap.face, top, n);
+  geo::Cone cone;
+  cone.frame.origin = centre;
+  cone.frame.z = n;
+  cone.frame.x = x;
+  cone.radius = r0;
+  cone.half_angle = -std::atan2(r0 - r1, height);  // narrowing towards +z
+  b.set_surface(g, cone, true);
+  return cap.face;
+}
+
+VertexH raise_dome(Body& b, FaceH g, const Vec3& centre, double r, double height) {
+  if (!(0 < height && height < r)) throw std::logic_error("raise_dome: need 0 < height < r");
+  Vec3 n = outward_normal(b, g);
+  HalfedgeH h = b.first(b.outer_loop(g));
+  Vec3 p0 = b.point(b.origin(h)), pole = centre + height * n;
+  // The sphere through the circle and the pole.
+  double radius = (r * r + height * height) / (2 * height);
+  Vec3 sc = centre + (height - radius) * n;
+  MevResult seam = must(euler::mev(b, Corner::before(h), pole), "mev (dome seam)");
+  set_circle(b, seam.x, sc, (p0 - sc).cross(pole - sc));  // the meridian, from the circle up
+  geo::Sphere sphere;
+  sphere.frame.origin = sc;
+  sphere.frame.z = n;
+  sphere.frame.x = (p0 - centre).normalized();
+  sphere.radius = radius;
+  b.set_surface(g, sphere, true);
+  return seam.vertex;
+}
+
 std::vector<FaceH> raise_pyramid(Body& b, FaceH g, const Vec3& apex) {
   LoopH l = b.outer_loop(g);
   std::vector<VertexH> vs = b.loop_vertices(l);

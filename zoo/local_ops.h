@@ -67,6 +67,15 @@ std::vector<FaceH> extrude(Body& b, FaceH g, const Vec3& d);
 // Extrudes a disc face (one circular edge) by d into a cylindrical boss: returns the
 // cylinder face; the disc moves to the top.
 FaceH extrude_disc(Body& b, FaceH g, const Vec3& d, double radius, const Vec3& centre);
+// Raises a disc face g (one circular edge of radius r0 about `centre`) into a conical
+// frustum `height` tall whose flat top has radius r1 (< r0): g becomes the cone face (a
+// straight seam joins the two circles), the new top disc is returned.
+FaceH raise_cone(Body& b, FaceH g, const Vec3& centre, double r0, double r1, double height);
+// Raises a disc face g (one circular edge of radius r about `centre`) into a spherical
+// dome `height` tall (height < r: less than a hemisphere): g becomes the sphere face,
+// bounded by the circle and a seam arc (a strut) from the circle's vertex to the pole.
+// Returns the pole.
+VertexH raise_dome(Body& b, FaceH g, const Vec3& centre, double r, double height);
 // Turns face g into the base of a pyramid with its apex at `apex`: the side faces
 // (planar, in loop order of g's vertices) are returned; g is consumed (it becomes one
 // of the side faces).

@@ -24,6 +24,11 @@ Block add_block(Body& b, FaceH on, double x0, double y0, double x1, double y1, d
 // A block standing on the edge between horizontal face `top` and vertical face `side`
 // (normal -x), spanning [y0, y1] and reaching to x1, with its left face merged into `side`.
 Block add_flush_block(Body& b, FaceH top, FaceH side, double y0, double y1, double x1, double height);
+// The same along any straight edge: h is the edge's half-edge in the planar face the block
+// stands on; the block covers arc lengths [s0, s1] from origin(h), reaches `depth` into
+// that face and is `height` tall; its face over the edge is merged into the face across h.
+// make::boss_pinch with the same h, s0, s1 and offset + w = depth is its defective twin.
+Block add_flush_block(Body& b, HalfedgeH h, double s0, double s1, double depth, double height);
 
 struct Pyramid {
   std::vector<FaceH> sides;

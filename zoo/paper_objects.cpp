@@ -58,23 +58,27 @@ Block add_block(Body& b, FaceH on, double x0, double y0, double x1, double y1, d
 
 Block add_flush_block(Body& b, FaceH top, FaceH side, double y0, double y1, double x1, double height) {
   // The block stands on the edge x = x_edge of `top`, its left face in the plane of `side`.
-  double z = plane_of(b, top)->frame.origin.z();
   double x = plane_of(b, side)->frame.origin.x();
   HalfedgeH h = halfedge_in(b, top, vertex_point_on(b, top, side, +1), vertex_point_on(b, top, side, -1));
-  Vec3 p = b.point(b.origin(h)), d = (b.point(b.target(h)) - p).normalized();
-  double s0 = std::abs(y0 - p.y()), s1 = std::abs(y1 - p.y());
+  double y = b.point(b.origin(h)).y();
+  double s0 = std::abs(y0 - y), s1 = std::abs(y1 - y);
   if (s0 > s1) std::swap(s0, s1);
+  return add_flush_block(b, h, s0, s1, x1 - x, height);
+}
+
+Block add_flush_block(Body& b, HalfedgeH h, double s0, double s1, double depth, double height) {
+  FaceH top = b.face(h);
+  Vec3 p = b.point(b.origin(h)), d = (b.point(b.target(h)) - p).normalized();
   SemvResult sa = must(euler::semv(b, h, p + s0 * d), "semv");
   must(euler::semv(b, sa.next, p + s1 * d), "semv");
   HalfedgeH mid = sa.next;
   Vec3 u = outward_normal(b, top).cross(d);
   Vec3 a = p + s0 * d, c = p + s1 * d;
-  FaceH r = cut_off(b, mid, {a + (x1 - x) * u, c + (x1 - x) * u});
-  (void)z;
+  FaceH r = cut_off(b, mid, {a + depth * u, c + depth * u});
   Block k;
-  k.sides = extrude(b, r, Vec3(0, 0, height));
+  k.sides = extrude(b, r, outward_normal(b, top) * height);
   k.top = r;
-  // The block's face over `mid` lies in `side`'s plane: one face with it.
+  // The block's face over `mid` lies in the plane of the face across h: one face with it.
   must(euler::kef(b, twin(mid)), "kef (flush)");
   std::vector<FaceH> alive;
   for (FaceH f : k.sides)
