@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,11 +40,24 @@ struct NativeDocument {
 // starts with the JSON pointer of the offending place.
 std::optional<NativeDocument> read_native(std::string_view text, std::string* error);
 
-// The document for `b` (live elements only). Never throws: strings in `meta` that are
-// not UTF-8 are written with U+FFFD in their place, and a non-finite number (which no
-// valid body has) is written as null, which the reader then refuses.
+// The document for `b` (live elements only), streamed from the body without building a
+// JSON document (io/native_json_writer.cpp). Strings in `meta` that are not UTF-8 are
+// written with U+FFFD in their place, and a non-finite number (which no valid body has)
+// is written as null, which the reader then refuses. Throws only std::bad_alloc.
 std::string write_native(const Body& b, const nlohmann::json& meta = nlohmann::json::object(),
                          const std::string& units = "mm");
+
+// Receives a document piece by piece, in order; returns false to stop (a failed write).
+using ChunkSink = std::function<bool(std::string_view)>;
+
+// The same bytes as write_native, handed to `sink` in pieces of about 1 MiB, so the
+// whole document is never in memory. Returns false when the sink did (and stops there).
+bool write_native_to(const Body& b, const nlohmann::json& meta, const std::string& units, const ChunkSink& sink);
+
+// write_native(b, meta, units) written to `path` as write_file_atomically does, but
+// streamed: memory stays at the 1 MiB buffer however large the body.
+bool write_native_file(const std::string& path, const Body& b, const nlohmann::json& meta, const std::string& units,
+                       std::string* error, const std::string& must_not_overwrite = "");
 
 // Reads a whole file and parses it. Refuses files over kMaxNativeBytes and paths that
 // cannot be read; every message starts with the path ("model.json: /faces/2: ...").
@@ -56,5 +70,12 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
 // is left behind.
 bool write_file_atomically(const std::string& path, const std::string& contents, std::string* error,
                            const std::string& must_not_overwrite = "");
+
+// write_file_atomically with the contents produced piece by piece (io/atomic_file.cpp):
+// `produce` is called once with a sink that appends to the temporary file. When it
+// returns false or throws, or a write fails, nothing is renamed and the temporary file
+// is removed.
+bool write_file_atomically_streamed(const std::string& path, const std::function<bool(const ChunkSink&)>& produce,
+                                    std::string* error, const std::string& must_not_overwrite = "");
 
 }  // namespace kintsugi::io

@@ -1,6 +1,6 @@
-// The native JSON format (spec/file-format.md): a bounded parser, a validating reader
-// that turns the document into a BodyDescription and lets assemble() check the topology,
-// a writer, and the file helpers.
+// The native JSON reader (spec/file-format.md): a bounded parser and a validating reader
+// that turns the document into a BodyDescription and lets assemble() check the topology.
+// The writer is io/native_json_writer.cpp, atomic file writes io/atomic_file.cpp.
 #include "io/native_json.h"
 
 #include "kernel/assemble.h"
@@ -10,13 +10,11 @@
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <numbers>
 #include <unordered_map>
 #include <utility>
@@ -25,7 +23,6 @@
 namespace kintsugi::io {
 
 using json = nlohmann::json;
-using ojson = nlohmann::ordered_json;
 
 namespace {
 
@@ -738,102 +735,6 @@ class DocumentReader {
   }
 };
 
-// ---- writer -------------------------------------------------------------------------
-
-ojson vec3_json(const geo::Vec3& p) { return ojson::array({p.x(), p.y(), p.z()}); }
-ojson frame_json(const geo::Frame& f) {
-  ojson j = ojson::object();
-  j["origin"] = vec3_json(f.origin);
-  j["x"] = vec3_json(f.x);
-  j["z"] = vec3_json(f.z);
-  return j;
-}
-
-template <class... Fs>
-struct Overload : Fs... {
-  using Fs::operator()...;
-};
-// clang before 17 does not deduce aggregate template arguments without a guide.
-template <class... Fs>
-Overload(Fs...) -> Overload<Fs...>;
-
-ojson surface_json(const geo::Surface& s) {
-  return std::visit(
-      Overload{[](const std::monostate&) { return ojson(nullptr); },
-               [](const geo::Plane& p) { return ojson{{"type", "plane"}, {"frame", frame_json(p.frame)}}; },
-               [](const geo::Cylinder& c) {
-                 return ojson{{"type", "cylinder"}, {"frame", frame_json(c.frame)}, {"radius", c.radius}};
-               },
-               [](const geo::Cone& c) {
-                 return ojson{{"type", "cone"},
-                              {"frame", frame_json(c.frame)},
-                              {"radius", c.radius},
-                              {"half_angle", c.half_angle}};
-               },
-               [](const geo::Sphere& c) {
-                 return ojson{{"type", "sphere"}, {"frame", frame_json(c.frame)}, {"radius", c.radius}};
-               },
-               [](const geo::Torus& t) {
-                 return ojson{{"type", "torus"},
-                              {"frame", frame_json(t.frame)},
-                              {"major_radius", t.major_radius},
-                              {"minor_radius", t.minor_radius}};
-               }},
-      s);
-}
-
-ojson curve_json(const geo::Curve& c) {
-  return std::visit(
-      Overload{[](const std::monostate&) { return ojson(nullptr); },
-               [](const geo::Line& l) {
-                 return ojson{{"type", "line"}, {"origin", vec3_json(l.origin)}, {"direction", vec3_json(l.direction)}};
-               },
-               [](const geo::Circle& k) {
-                 return ojson{{"type", "circle"}, {"frame", frame_json(k.frame)}, {"radius", k.radius}};
-               },
-               [](const geo::Ellipse& e) {
-                 return ojson{{"type", "ellipse"},
-                              {"frame", frame_json(e.frame)},
-                              {"major_radius", e.major_radius},
-                              {"minor_radius", e.minor_radius}};
-               },
-               [](const geo::Polyline& p) {
-                 ojson pts = ojson::array();
-                 for (const auto& q : p.points) pts.push_back(vec3_json(q));
-                 return ojson{{"type", "polyline"}, {"points", std::move(pts)}, {"chordal_error", p.chordal_error}};
-               }},
-      c);
-}
-
-// One element on one line, with a space after ':' and ',' (nlohmann's compact form has
-// none, its indented form puts every number on its own line). Element objects hold only
-// our own keys and type names, numbers, booleans and null, so no string contains ':' or
-// ',' and spacing the compact form is safe.
-void dump_inline(const ojson& j, std::string& out) {
-  for (char c : j.dump()) {
-    out += c;
-    if (c == ',' || c == ':') out += ' ';
-  }
-}
-
-void section(std::string& out, const char* key, const std::vector<ojson>& items) {
-  out += "  \"";
-  out += key;
-  out += "\": [";
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    out += i ? ",\n    " : "\n    ";
-    dump_inline(items[i], out);
-  }
-  out += items.empty() ? "],\n" : "\n  ],\n";
-}
-
-ojson optional_id(const std::optional<std::uint32_t>& v) { return v ? ojson(*v) : ojson(nullptr); }
-
-bool fail_io(std::string* error, const std::string& message) {
-  if (error) *error = message;
-  return false;
-}
-
 }  // namespace
 
 std::optional<NativeDocument> read_native(std::string_view text, std::string* error) {
@@ -855,48 +756,6 @@ std::optional<NativeDocument> read_native(std::string_view text, std::string* er
     if (error) *error = std::string("cannot read the document: ") + e.what();
     return std::nullopt;
   }
-}
-
-std::string write_native(const Body& b, const nlohmann::json& meta, const std::string& units) {
-  const BodyDescription d = describe(b);
-  std::vector<ojson> vs, es, ls, fs, ss;
-  for (const auto& v : d.vertices) vs.push_back(ojson{{"id", v.id}, {"point", vec3_json(v.point)}});
-  for (const auto& e : d.edges) {
-    ojson he = ojson::array();
-    for (const auto& h : e.he) he.push_back(ojson{{"origin", h.origin}, {"next", h.next}, {"loop", h.loop}});
-    es.push_back(ojson{{"id", e.id}, {"he", std::move(he)}, {"curve", curve_json(e.curve)}});
-  }
-  for (const auto& l : d.loops) {
-    ojson j{{"id", l.id}, {"face", optional_id(l.face)}};
-    if (l.first)
-      j["first"] = *l.first;
-    else
-      j["lone"] = optional_id(l.lone);
-    ls.push_back(std::move(j));
-  }
-  for (const auto& f : d.faces)
-    fs.push_back(ojson{{"id", f.id},
-                       {"shell", f.shell},
-                       {"loops", f.loops},
-                       {"same_sense", f.same_sense},
-                       {"surface", surface_json(f.surface)}});
-  for (const auto& s : d.shells) ss.push_back(ojson{{"id", s.id}, {"genus", s.genus}});
-
-  std::string out = "{\n  \"format\": \"kintsugi-brep\",\n  \"version\": 1,\n  \"units\": ";
-  out += json(units).dump(-1, ' ', false, json::error_handler_t::replace) + ",\n";
-  section(out, "vertices", vs);
-  section(out, "edges", es);
-  section(out, "loops", ls);
-  section(out, "faces", fs);
-  section(out, "shells", ss);
-  std::string m = meta.dump(2, ' ', false, json::error_handler_t::replace);
-  out += "  \"meta\": ";
-  for (char c : m) {
-    out += c;
-    if (c == '\n') out += "  ";
-  }
-  out += "\n}\n";
-  return out;
 }
 
 std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error) {
@@ -934,61 +793,6 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
   auto doc = read_native(text, &why);
   if (!doc) return refuse(why);
   return doc;
-}
-
-bool write_file_atomically(const std::string& path, const std::string& contents, std::string* error,
-                           const std::string& must_not_overwrite) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (path.empty() || !target.has_filename()) return fail_io(error, "'" + path + "' is not a file name");
-  if (!must_not_overwrite.empty()) {
-    std::error_code ec;
-    if (fs::exists(target, ec) && fs::exists(must_not_overwrite, ec) && fs::equivalent(target, must_not_overwrite, ec))
-      return fail_io(error, path + ": refusing to overwrite the input file " + must_not_overwrite);
-  }
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-
-  // A fresh name in the same directory (so the rename stays within one file system);
-  // O_EXCL never reuses someone else's file, 0666 lets the umask decide the mode.
-  static std::atomic<unsigned> counter{0};
-  std::string temp;
-  int fd = -1;
-  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-    temp = (dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                   std::to_string(counter++)))
-               .string();
-    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) break;
-  }
-  if (fd < 0)
-    return fail_io(error, path + ": cannot create a temporary file in " + dir.string() + ": " + std::strerror(errno));
-
-  auto abandon = [&](const std::string& what) {
-    std::string why = path + ": " + what + ": " + std::strerror(errno);
-    if (fd >= 0) ::close(fd);
-    ::unlink(temp.c_str());
-    return fail_io(error, why);
-  };
-  for (std::size_t done = 0; done < contents.size();) {
-    ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return abandon("cannot write " + temp);
-    }
-    done += std::size_t(n);
-  }
-  if (::fsync(fd) != 0) return abandon("cannot flush " + temp);
-  int closed = ::close(fd);
-  fd = -1;
-  if (closed != 0) return abandon("cannot close " + temp);
-  if (::rename(temp.c_str(), path.c_str()) != 0) return abandon("cannot rename " + temp + " over it");
-  // Make the rename itself durable; failing here loses nothing already visible.
-  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    (void)::fsync(dfd);
-    ::close(dfd);
-  }
-  return true;
 }
 
 }  // namespace kintsugi::io
