@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -41,6 +42,45 @@ bool same_face_surface(const Body& a, FaceH fa, const Body& b, FaceH fb, double 
   return true;
 }
 
+// Whether every vertex on fa's loops is at a vertex on fb's loops, and the other way.
+bool same_boundary_points(const Body& a, FaceH fa, const Body& b, FaceH fb, double tol) {
+  auto points = [](const Body& x, FaceH f) {
+    std::vector<Vec3> ps;
+    for (LoopH l : x.loops_of(f)) {
+      if (x.is_lone(l)) {
+        ps.push_back(x.point(x.lone_vertex(l)));
+        continue;
+      }
+      for (VertexH v : x.loop_vertices(l)) ps.push_back(x.point(v));
+    }
+    return ps;
+  };
+  auto covered = [tol](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
+    for (const Vec3& x : p) {
+      bool found = false;
+      for (const Vec3& y : q) found = found || (x - y).norm() <= tol * std::max(1.0, x.norm());
+      if (!found) return false;
+    }
+    return true;
+  };
+  std::vector<Vec3> pa = points(a, fa), pb = points(b, fb);
+  return covered(pa, pb) && covered(pb, pa);
+}
+
+// The faces around v (border cycles left out).
+std::set<FaceH> faces_at(const Body& x, VertexH v) {
+  std::set<FaceH> fs;
+  for (HalfedgeH h : x.outgoing(v)) {
+    if (!x.is_border(h)) fs.insert(x.face(h));
+    if (!x.is_border(twin(h))) fs.insert(x.face(twin(h)));
+  }
+  if (fs.empty())  // a lone vertex in a face has no half-edges
+    for (FaceH f : x.faces())
+      for (LoopH l : x.loops_of(f))
+        if (x.is_lone(l) && x.lone_vertex(l) == v) fs.insert(f);
+  return fs;
+}
+
 std::string str(const Vec3& p) {
   std::ostringstream os;
   os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
@@ -58,15 +98,19 @@ std::string compare_bodies(const Body& a, const Body& b, double tol) {
        << cb.loops << " " << cb.shells << " " << cb.border_cycles;
     return os.str();
   }
-  // Faces matched one to one by oriented surface.
+  // Faces matched one to one by oriented surface and, among faces on the same surface
+  // (coplanar faces of solids side by side), by their boundary's vertices.
   std::map<FaceH, FaceH> fmap;
   std::vector<std::uint8_t> taken(b.face_slots(), 0);
   for (FaceH fa : a.faces()) {
     FaceH match;
     for (FaceH fb : b.faces())
       if (!taken[fb.idx()] && same_face_surface(a, fa, b, fb, tol)) {
-        match = fb;
-        break;
+        if (!match.valid()) match = fb;
+        if (same_boundary_points(a, fa, b, fb, tol)) {
+          match = fb;
+          break;
+        }
       }
     if (!match.valid())
       return "face " + fa.str() + " (" + geo::surface_type_name(a.surface(fa)) + ", same_sense " +
@@ -74,12 +118,21 @@ std::string compare_bodies(const Body& a, const Body& b, double tol) {
     taken[match.idx()] = 1;
     fmap[fa] = match;
   }
-  // Vertices matched by position.
+  // Vertices matched by position and, among coincident ones (solids that touch), by
+  // the faces around them.
   std::map<VertexH, VertexH> vmap;
   for (VertexH va : a.vertices()) {
+    std::set<FaceH> around;
+    for (FaceH f : faces_at(a, va)) around.insert(fmap[f]);
     VertexH match;
     for (VertexH vb : b.vertices())
-      if ((a.point(va) - b.point(vb)).norm() <= tol * std::max(1.0, a.point(va).norm())) match = vb;
+      if ((a.point(va) - b.point(vb)).norm() <= tol * std::max(1.0, a.point(va).norm())) {
+        if (!match.valid()) match = vb;
+        if (faces_at(b, vb) == around) {
+          match = vb;
+          break;
+        }
+      }
     if (!match.valid()) return "vertex " + va.str() + " at " + str(a.point(va)) + " has no vertex there";
     vmap[va] = match;
   }

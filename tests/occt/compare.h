@@ -14,9 +14,11 @@ namespace kintsugi::test {
 
 // Empty when `b` is `a` up to renumbering: equal counts, faces matched one to one by
 // their surfaces (sample points of a's surface on b's within tol, outward normals
-// agreeing), the same face–face adjacency (as a multiset of face pairs per edge), every
-// vertex of a at a vertex of b, and points along every edge of a on an edge of b
-// between the same faces. Otherwise, the first difference found.
+// agreeing; among several faces on the same surface, the one whose loops have the same
+// vertex positions), every vertex of a at a vertex of b (among coincident vertices, as
+// where two solids touch, the one with the matched faces around it), and every edge of
+// a matched to an edge of b between the same faces, from and to the matched vertices,
+// through the same points. Otherwise, the first difference found.
 std::string compare_bodies(const Body& a, const Body& b, double tol = 1e-7);
 
 // Applies x -> r·x + t to every point, curve and surface frame.

@@ -107,32 +107,30 @@ TEST(OpenShell, AStepFileOfAnOpenShellHoldsAShellNotASolid) {
   EXPECT_NE(ss.str().find("SHELL"), std::string::npos);
 }
 
-TEST(TwoShells, TwoSolidsRoundTripAsTwoShells) {
-  // Two disjoint boxes in one body: describe both and assemble them together.
-  Body a = build::box(1, 1, 1), c = build::cylinder(0.5, 1);
-  test::transform(c, Eigen::Matrix3d::Identity(), Eigen::Vector3d(5, 0, 0));
+// Two bodies side by side as one body of two shells (describe both, renumber the
+// second after the first, assemble).
+Body two_shells(const Body& a, const Body& c) {
   BodyDescription da = describe(a), dc = describe(c);
-  auto shift = [](BodyDescription& d, std::uint32_t v, std::uint32_t e, std::uint32_t l, std::uint32_t f,
-                  std::uint32_t s) {
-    for (auto& x : d.vertices) x.id += v;
-    for (auto& x : d.edges) {
-      x.id += e;
-      for (auto& h : x.he) h = {h.origin + v, h.next + 2 * e, h.loop + l};
-    }
-    for (auto& x : d.loops) {
-      x.id += l;
-      if (x.face) *x.face += f;
-      if (x.first) *x.first += 2 * e;
-      if (x.lone) *x.lone += v;
-    }
-    for (auto& x : d.faces) {
-      x.id += f;
-      x.shell += s;
-      for (auto& l2 : x.loops) l2 += l;
-    }
-    for (auto& x : d.shells) x.id += s;
-  };
-  shift(dc, 8, 12, 6, 6, 1);
+  const auto v = std::uint32_t(da.vertices.size()), e = std::uint32_t(da.edges.size()),
+             l = std::uint32_t(da.loops.size()), f = std::uint32_t(da.faces.size()),
+             s = std::uint32_t(da.shells.size());
+  for (auto& x : dc.vertices) x.id += v;
+  for (auto& x : dc.edges) {
+    x.id += e;
+    for (auto& h : x.he) h = {h.origin + v, h.next + 2 * e, h.loop + l};
+  }
+  for (auto& x : dc.loops) {
+    x.id += l;
+    if (x.face) *x.face += f;
+    if (x.first) *x.first += 2 * e;
+    if (x.lone) *x.lone += v;
+  }
+  for (auto& x : dc.faces) {
+    x.id += f;
+    x.shell += s;
+    for (auto& l2 : x.loops) l2 += l;
+  }
+  for (auto& x : dc.shells) x.id += s;
   for (auto& x : dc.vertices) da.vertices.push_back(x);
   for (auto& x : dc.edges) da.edges.push_back(x);
   for (auto& x : dc.loops) da.loops.push_back(x);
@@ -140,12 +138,41 @@ TEST(TwoShells, TwoSolidsRoundTripAsTwoShells) {
   for (auto& x : dc.shells) da.shells.push_back(x);
   AssembleError ae;
   std::optional<Body> both = assemble(da, &ae);
-  ASSERT_TRUE(both) << ae.element << ": " << ae.message;
-  EXPECT_TRUE(io::occt_check(*both).valid);
+  EXPECT_TRUE(both) << ae.element << ": " << ae.message;
+  return both ? std::move(*both) : Body{};
+}
+
+TEST(TwoShells, TwoSolidsRoundTripAsTwoShells) {
+  Body a = build::box(1, 1, 1), c = build::cylinder(0.5, 1);
+  test::transform(c, Eigen::Matrix3d::Identity(), Eigen::Vector3d(5, 0, 0));
+  Body both = two_shells(a, c);
+  ASSERT_EQ(both.counts().shells, 2u);
+  EXPECT_TRUE(io::occt_check(both).valid);
   for (CadFormat f : {CadFormat::step, CadFormat::brep}) {
-    Body r = test::round_trip(*both, f, "two_shells");
+    Body r = test::round_trip(both, f, "two_shells");
     EXPECT_EQ(r.counts().shells, 2u);
-    EXPECT_EQ(test::compare_bodies(*both, r), "");
+    EXPECT_EQ(test::compare_bodies(both, r), "");
+  }
+}
+
+TEST(TwoShells, TouchingSolidsKeepTheirOwnVerticesAndFaces) {
+  // Two unit boxes sharing the square x = 1 (as solids that touch in an assembly): four
+  // pairs of coincident vertices, the two faces at x = 1 on one plane facing opposite
+  // ways, and four pairs of coplanar faces facing the same way (y = 0, y = 1, z = 0,
+  // z = 1). Each shell keeps its own elements; the comparison pairs them by shell.
+  Body a = build::box(1, 1, 1), c = build::box(1, 1, 1);
+  test::transform(c, Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 0, 0));
+  Body both = two_shells(a, c);
+  ASSERT_EQ(both.counts().shells, 2u);
+  io::OcctVerdict v = io::occt_check(both);
+  EXPECT_TRUE(v.valid) << problems(v);
+  for (CadFormat f : {CadFormat::step, CadFormat::brep}) {
+    Body r = test::round_trip(both, f, "touching_boxes");
+    expect_valid_topology(r);
+    EXPECT_EQ(r.counts().shells, 2u);
+    EXPECT_EQ(r.counts().vertices, 16u);
+    EXPECT_EQ(test::compare_bodies(both, r), "");
+    EXPECT_EQ(test::compare_bodies(r, both), "");
   }
 }
 
