@@ -89,7 +89,9 @@ void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
     // The faces on either side of each edge, as unordered pairs.
     std::set<FaceH> fa{b.face(a), b.face(twin(a))}, fd{b.face(d), b.face(twin(d))};
     if (fa != fd) continue;
-    if (is_short(edge_of(a)) && is_short(edge_of(d))) continue;  // inside a short-edge chain
+    // At an end of a short edge or inside a short-edge chain: that edge's repair moves or
+    // removes the vertex, and whatever is left to merge is found afresh after it.
+    if (is_short(edge_of(a)) || is_short(edge_of(d))) continue;
     Problem p;
     p.type = ProblemType::mergeable_edges;
     p.elements = {v.str(), edge_of(a).str(), edge_of(d).str()};

@@ -1,5 +1,6 @@
 // Face problems: small faces and their chains (paper 4.3, 4.6), slivers (4.4), pinched
 // faces (4.2) and adjacent faces with the same geometry (4.5).
+#include "geometry/close_pairs.h"
 #include "geometry/distance.h"
 #include "geometry/same_geometry.h"
 #include "invariants/element_geometry.h"
@@ -138,52 +139,72 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
   for (FaceH f : b.faces()) {
     const FaceInfo& fi = c.faces[f.idx()];
     if (!fi.measured || fi.small || fi.sliver) continue;
-    std::vector<LoopH> loops = b.loops_of(f);
-    std::vector<std::vector<HalfedgeH>> hes;
-    std::vector<std::vector<std::vector<geo::Vec3>>> polys;
-    for (LoopH l : loops) {
-      hes.push_back(b.loop_halfedges(l));
-      polys.emplace_back();
-      for (HalfedgeH h : hes.back()) polys.back().push_back(halfedge_polyline(b, h, c.chordal));
+    // Every half-edge of the face, loop by loop, with its polyline and bounding box.
+    struct Side {
+      std::size_t loop, pos;
+      HalfedgeH h;
+      std::vector<geo::Vec3> poly;
+    };
+    std::vector<Side> sides;
+    std::vector<geo::Box> boxes;
+    std::vector<std::vector<double>> prefix;  // per loop: length of the half-edges before pos
+    // Edges along a gap go when the gap is closed (passes 1-3, before pinching): they
+    // are not pinched, and a stretch of them joins its neighbours as if it had no length.
+    auto gap_side = [&](HalfedgeH h) { return b.is_border(twin(h)); };
+    auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length[edge_of(h).idx()]; };
+    for (LoopH l : b.loops_of(f)) {
+      std::vector<HalfedgeH> hs = b.loop_halfedges(l);
+      prefix.emplace_back(1, 0.0);
+      for (std::size_t i = 0; i < hs.size(); ++i) {
+        prefix.back().push_back(prefix.back().back() + len(hs[i]));
+        Side s{prefix.size() - 1, i, hs[i], halfedge_polyline(b, hs[i], c.chordal)};
+        geo::Box box;
+        if (!gap_side(hs[i]))
+          for (const geo::Vec3& p : s.poly) box.add(p);
+        sides.push_back(std::move(s));
+        boxes.push_back(box);
+      }
     }
-    auto len = [&](HalfedgeH h) { return c.edge_length[edge_of(h).idx()]; };
     std::vector<ClosePair> pairs;
     auto consider = [&](double d, HalfedgeH x, HalfedgeH y, const char* where) {
       if (d < t) pairs.push_back({d, x, y, where});
     };
-    for (std::size_t la = 0; la < hes.size(); ++la) {
-      const auto& A = hes[la];
-      std::size_t n = A.size();
-      // Pairs within one loop.
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j) {
-          if (edge_of(A[i]) == edge_of(A[j])) continue;  // a seam
-          if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // consecutive
-          double l1 = 0, l2 = 0;  // boundary between them: after A[i] up to A[j], and after A[j] round to A[i]
-          for (std::size_t k = i + 1; k < j; ++k) l1 += len(A[k]);
-          for (std::size_t k = j + 1; k < n + i; ++k) l2 += len(A[k % n]);
-          if (l1 < t && l2 < t) continue;  // the whole face is tiny: a small face's business
-          if (l1 < t || l2 < t) {
-            // Joined through a chain shorter than the tolerance: they count as a pinch only
-            // where they come close away from that chain (a spike), not at the chain itself
-            // (that is a short edge or chain).
-            bool near_end_of_i = l1 < t;  // the chain starts at A[i]'s end
-            auto pa = trim(polys[la][i], t, !near_end_of_i);
-            auto pb = trim(polys[la][j], t, near_end_of_i);
-            consider(distance(pa, pb), A[i], A[j], "spiking");
-          } else {
-            consider(distance(polys[la][i], polys[la][j]), A[i], A[j], "necking");
-          }
-        }
-      // Pairs across loops: an inner loop close to the outer loop (or to another ring).
-      for (std::size_t lb = la + 1; lb < hes.size(); ++lb)
-        for (std::size_t i = 0; i < n; ++i)
-          for (std::size_t j = 0; j < hes[lb].size(); ++j) {
-            if (b.origin(A[i]) == b.origin(hes[lb][j]) || b.target(A[i]) == b.target(hes[lb][j]) ||
-                b.origin(A[i]) == b.target(hes[lb][j]) || b.target(A[i]) == b.origin(hes[lb][j]))
-              continue;  // loops touching at a vertex
-            consider(distance(polys[la][i], polys[lb][j]), A[i], hes[lb][j], "bossing");
-          }
+    // Only pairs whose boxes come within t can be closer than t: linear in the face for
+    // bounded local density, however many rings (bosses) the face holds.
+    for (auto [p, q] : geo::close_pairs(boxes, t)) {
+      const Side& A = sides[p];
+      const Side& B = sides[q];
+      if (edge_of(A.h) == edge_of(B.h)) continue;  // a seam
+      if (A.loop != B.loop) {
+        // An inner loop close to the outer loop (or to another ring); loops touching at a
+        // vertex are not compared.
+        if (share_vertex(b, A.h, B.h)) continue;
+        consider(distance(A.poly, B.poly), A.h, B.h, "bossing");
+        continue;
+      }
+      const std::vector<double>& pre = prefix[A.loop];
+      const std::size_t n = pre.size() - 1, i = A.pos, j = B.pos;  // i < j: sides are in loop order
+      if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // consecutive
+      // The boundary between them: after A up to B, and after B round to A.
+      const double l1 = pre[j] - pre[i + 1], l2 = pre[n] - (pre[j + 1] - pre[i]);
+      if (l1 < t && l2 < t) continue;  // the whole face is tiny: a small face's business
+      // Ends where the two edges are joined, through a stretch shorter than t or at a
+      // vertex they share elsewhere in the loop (across a seam or strut, e.g. the two
+      // ends of a cut circle on a cylinder): there they are consecutive, so they count
+      // only where they come close away from those ends (a spike), after cutting
+      // length t off each edge there. No such end: necking.
+      bool cut_a[2] = {l2 < t, l1 < t}, cut_b[2] = {l1 < t, l2 < t};  // [start, end]
+      VertexH va[2] = {b.origin(A.h), b.target(A.h)}, vb[2] = {b.origin(B.h), b.target(B.h)};
+      for (int x = 0; x < 2; ++x)
+        for (int y = 0; y < 2; ++y)
+          if (va[x] == vb[y]) cut_a[x] = cut_b[y] = true;
+      std::vector<geo::Vec3> pa = A.poly, pb = B.poly;
+      for (int x = 0; x < 2; ++x) {
+        if (cut_a[x]) pa = trim(pa, t, x == 0);
+        if (cut_b[x]) pb = trim(pb, t, x == 0);
+      }
+      bool joined = cut_a[0] || cut_a[1];
+      consider(distance(pa, pb), A.h, B.h, joined ? "spiking" : "necking");
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.

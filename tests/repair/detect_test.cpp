@@ -136,6 +136,22 @@ TEST(Detect, PaperObjectsReportExactlyTheirDefects) {
   }
 }
 
+// The scalable family: without defects it reports nothing; with them, exactly the
+// defects it records, at their places, whatever the seed and size.
+RC_GTEST_PROP(Detect, FamilyReportsExactlyItsDefects, ()) {
+  const std::size_t faces = *rc::gen::inRange<std::size_t>(60, 900);
+  const double rate = *rc::gen::element(0.0, 0.05, 0.2);
+  const std::uint64_t seed = *rc::gen::arbitrary<std::uint32_t>();
+  zoo::ZooModel m = zoo::family(faces, rate, seed);
+  Detection d = detect(m.body, tol_for(m.body, m.tolerance));
+  std::array<int, 11> expected{};
+  for (const auto& k : m.defects) expected[std::size_t(problem_order(k.type) - 1)]++;
+  RC_ASSERT(d.counts == expected);
+  const std::string missing = unmatched(m.defects, d);
+  RC_ASSERT(missing == "");
+  if (rate == 0.0) RC_ASSERT(d.problems.empty());
+}
+
 // An injected defect of type k is reported as type k, at an element the injector names.
 RC_GTEST_PROP(Detect, InjectedDefectIsFoundWhereItWasPut, ()) {
   const ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
