@@ -7,8 +7,8 @@
 // the model.
 //   mergeable_edges:  a vertex on exactly two different edges that separate the same
 //                     pair of faces (a border cycle is not a face: gap boundaries are
-//                     gaps); not one inside a short-edge chain (the chain's own repair
-//                     removes it).
+//                     gaps); not one inside or at an end of a short-edge chain (the
+//                     chain's own repair moves or removes it).
 #include "repair/detect_detail.h"
 
 #include <algorithm>
@@ -81,6 +81,18 @@ void detect_short_edges(DetectContext& c, std::vector<Problem>& out) {
 void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
   auto is_short = [&](EdgeH e) { return c.edge_length[e.idx()] < c.tol.length; };
+  // A short edge with a short neighbour across a two-edge vertex.
+  auto in_chain = [&](EdgeH e) {
+    if (!is_short(e)) return false;
+    HalfedgeH h = halfedge_of(e, 0);
+    for (VertexH w : {b.origin(h), b.target(h)}) {
+      HalfedgeH x, y;
+      if (!two_edges(b, w, &x, &y)) continue;
+      EdgeH other = edge_of(x) == e ? edge_of(y) : edge_of(x);
+      if (other != e && is_short(other)) return true;
+    }
+    return false;
+  };
   for (VertexH v : b.vertices()) {
     HalfedgeH a, d;
     if (!two_edges(b, v, &a, &d)) continue;
@@ -89,9 +101,11 @@ void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
     // The faces on either side of each edge, as unordered pairs.
     std::set<FaceH> fa{b.face(a), b.face(twin(a))}, fd{b.face(d), b.face(twin(d))};
     if (fa != fd) continue;
-    // At an end of a short edge or inside a short-edge chain: that edge's repair moves or
-    // removes the vertex, and whatever is left to merge is found afresh after it.
-    if (is_short(edge_of(a)) || is_short(edge_of(d))) continue;
+    // Inside a short-edge chain or at one of its ends: the chain's repair (pass 7, before
+    // this one's pass 10) moves or removes the vertex, and what is left to merge is found
+    // afresh after it. A lone short edge is different: merging it into its neighbour on
+    // the same curve is how it goes (pass 10 runs before pass 11), so its end is reported.
+    if (in_chain(edge_of(a)) || in_chain(edge_of(d))) continue;
     Problem p;
     p.type = ProblemType::mergeable_edges;
     p.elements = {v.str(), edge_of(a).str(), edge_of(d).str()};
