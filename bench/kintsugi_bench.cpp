@@ -6,17 +6,38 @@
 //     last line of JSON: {"faces", "half_edges", "peak_rss_bytes", "bytes_per_half_edge",
 //     "baseline_rss_bytes", "seconds"}. The peak includes the process's baseline (the
 //     binary and its libraries), measured before building and reported separately.
+//
+//   kintsugi-bench io --faces N [--rate R] [--seed S] [--dir D]
+//     The native JSON writer and reader on the scalable family (zoo::family, N faces,
+//     defect rate R, default 0.1, seed S, default 1). Builds the model once, then runs
+//     each step in a child process of its own, so that each step's peak resident set size
+//     is its own (it includes the model, which the child shares with the parent: the
+//     parent's resident set size after building the model is "model_rss_bytes"):
+//       write_string  write_native into a std::string;
+//       write_file    write_native_file (streamed into an atomic temporary file in D,
+//                     default the system temporary directory, fsynced, renamed);
+//       read_file     read_native_file of that file: parse, validate, assemble, and the
+//                     full topology check; then, outside the timing, Body::equals.
+//     Last line: JSON {"faces", "bytes", "model_seconds", "model_rss_bytes", "steps":
+//     {step: {"seconds", "peak_rss_bytes"}}, "read_back_equal"}.
 #include "invariants/topology_check.h"
+#include "io/native_json.h"
 #include "kernel/builders.h"
+#include "zoo/zoo.h"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -26,17 +47,155 @@ long long peak_rss_bytes() {
   return static_cast<long long>(u.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
+// The resident set size now (/proc/self/statm), or -1.
+long long current_rss_bytes() {
+  long long pages = -1, resident = -1;
+  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%lld %lld", &pages, &resident) != 2) resident = -1;
+    std::fclose(f);
+  }
+  return resident < 0 ? -1 : resident * ::sysconf(_SC_PAGESIZE);
+}
+
 int usage(std::ostream& os, int code) {
   os << "usage: kintsugi-bench memory --faces N [--check]\n"
-        "  Builds the grid box with about N faces (6..100000000) and prints its peak memory.\n"
-        "  --check  also run the full topology check on the result (adds its own memory)\n";
+        "       kintsugi-bench io --faces N [--rate R] [--seed S] [--dir D]\n"
+        "  memory  Builds the grid box with about N faces (6..100000000) and prints its peak memory.\n"
+        "          --check  also run the full topology check on the result (adds its own memory)\n"
+        "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
+        "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
+        "          prints each step's time and peak memory (each step runs in a child process).\n";
   return code;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Runs `step` in a child process; returns {"seconds", "peak_rss_bytes"} or {"error"}.
+// The child reports through a pipe: its peak RSS (its own getrusage) and its seconds.
+nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
+  int fds[2];
+  if (::pipe(fds) != 0) return {{"error", "pipe failed"}};
+  std::cout.flush();
+  pid_t pid = ::fork();
+  if (pid < 0) return {{"error", "fork failed"}};
+  if (pid == 0) {
+    ::close(fds[0]);
+    auto t0 = std::chrono::steady_clock::now();
+    std::string error = step();
+    double seconds = seconds_since(t0);
+    nlohmann::ordered_json r = {{"seconds", seconds}, {"peak_rss_bytes", peak_rss_bytes()}};
+    if (!error.empty()) r = {{"error", error}};
+    std::string text = r.dump();
+    ssize_t n = ::write(fds[1], text.data(), text.size());
+    ::_exit(n == ssize_t(text.size()) ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) text.append(buf, std::size_t(n));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the step's process failed"}};
+  return nlohmann::ordered_json::parse(text);
+}
+
+int bench_io(int argc, char** argv) {
+  long long faces = -1, seed = 1;
+  double rate = 0.1;
+  std::string dir = std::filesystem::temp_directory_path().string();
+  for (int i = 2; i < argc; ++i) {
+    std::string a = argv[i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : ""; };
+    char* end = nullptr;
+    if (a == "--faces") {
+      faces = std::strtoll(value(), &end, 10);
+      if (*end != '\0') faces = -1;
+    } else if (a == "--seed") {
+      seed = std::strtoll(value(), &end, 10);
+    } else if (a == "--rate") {
+      rate = std::strtod(value(), &end);
+    } else if (a == "--dir") {
+      dir = value();
+    } else if (a == "--help") {
+      return usage(std::cout, 0);
+    } else {
+      std::cerr << "kintsugi-bench: unknown argument '" << a << "'\n";
+      return usage(std::cerr, 2);
+    }
+  }
+  if (faces < 10 || faces > 10'000'000) {
+    std::cerr << "kintsugi-bench io: --faces needs a whole number from 10 to 10000000\n";
+    return 2;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  kintsugi::zoo::ZooModel m;
+  try {
+    m = kintsugi::zoo::family(std::size_t(faces), rate, std::uint64_t(seed));
+  } catch (const std::exception& e) {
+    std::cerr << "kintsugi-bench io: " << e.what() << "\n";
+    return 2;
+  }
+  const double model_seconds = seconds_since(t0);
+  const long long model_rss = current_rss_bytes();
+  const nlohmann::json meta = m.meta();
+  const auto c = m.body.counts();
+  std::cout << "family: " << c.faces << " faces, " << c.edges << " edges, " << c.vertices << " vertices, built in "
+            << model_seconds << " s, RSS " << model_rss / 1e6 << " MB (in every step's peak)\n";
+
+  const std::string path = (std::filesystem::path(dir) / ("kintsugi-bench-io-" + std::to_string(::getpid()) + ".json")).string();
+  nlohmann::ordered_json steps = nlohmann::ordered_json::object();
+  steps["write_string"] = in_child([&] {
+    std::string text = kintsugi::io::write_native(m.body, meta, "mm");
+    return text.empty() ? std::string("empty document") : std::string();
+  });
+  steps["write_file"] = in_child([&] {
+    std::string error;
+    return kintsugi::io::write_native_file(path, m.body, meta, "mm", &error) ? std::string() : error;
+  });
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  steps["read_file"] = in_child([&] {
+    std::string error;
+    auto doc = kintsugi::io::read_native_file(path, &error);
+    return doc ? std::string() : error;
+  });
+  // Outside the timing: what was read is the body that was written.
+  bool equal = false;
+  {
+    std::string error, why;
+    auto doc = kintsugi::io::read_native_file(path, &error);
+    equal = doc && doc->body.equals(m.body, &why) && doc->meta == meta;
+    if (!equal) std::cerr << "kintsugi-bench io: read back differs: " << error << why << "\n";
+  }
+  std::filesystem::remove(path, ec);
+  for (const auto& [name, r] : steps.items()) {
+    if (r.contains("error")) {
+      std::cout << name << ": " << r["error"].get<std::string>() << "\n";
+      continue;
+    }
+    std::cout << name << ": " << r["seconds"].get<double>() << " s, peak RSS " << r["peak_rss_bytes"].get<double>() / 1e6
+              << " MB\n";
+  }
+  nlohmann::ordered_json j = {{"faces", c.faces},
+                              {"bytes", ec ? 0 : bytes},
+                              {"model_seconds", model_seconds},
+                              {"model_rss_bytes", model_rss},
+                              {"steps", steps},
+                              {"read_back_equal", equal}};
+  std::cout << j.dump() << "\n";
+  for (const auto& [name, r] : steps.items())
+    if (r.contains("error")) return 1;
+  return equal ? 0 : 1;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) return usage(std::cout, 0);
+  if (argc >= 2 && std::strcmp(argv[1], "io") == 0) return bench_io(argc, argv);
   if (argc < 2 || std::strcmp(argv[1], "memory") != 0) return usage(std::cerr, 2);
   long long faces = -1;
   bool check = false;

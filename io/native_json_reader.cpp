@@ -15,8 +15,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <numbers>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -73,10 +73,30 @@ std::string describe_value(const json& j) {
 // it exists. The same events let us name the place of a syntax error, refuse numbers that
 // overflow a double (which the lexer turns into ±inf), and refuse duplicate keys (which
 // nlohmann would silently resolve to the last one).
+//
+// The element arrays of the top-level object ("vertices", ... "shells": by far the bulk
+// of a document) are not built: each of their elements is built alone, handed to the
+// ElementSink as soon as it is complete, and dropped, so the document in memory is the
+// top level, `meta`, and one element. (A whole document as nlohmann values takes about
+// ten times the bytes of its text.)
+
+// The element arrays, in the order the reader checks them.
+enum ElementKind { kVertices, kEdges, kLoops, kFaces, kShells, kElementKinds };
+const char* const kElementKeys[kElementKinds] = {"vertices", "edges", "loops", "faces", "shells"};
+
+class ElementSink {
+ public:
+  virtual ~ElementSink() = default;
+  // Element `index` of the top-level array `kind`, complete.
+  virtual void element(ElementKind kind, std::size_t index, const json& value) = 0;
+};
+
 class BoundedDocumentBuilder {
  public:
   json root;
   std::string error;
+
+  explicit BoundedDocumentBuilder(ElementSink* sink) : sink_(sink) {}
 
   bool null() { return add(json(nullptr)); }
   bool boolean(bool v) { return add(json(v)); }
@@ -117,8 +137,14 @@ class BoundedDocumentBuilder {
     std::string key;         // objects: the key whose value comes next
     bool has_key = false;
     std::string open_child;  // the token of the child container being built, if any
+    std::size_t count = 0;   // arrays: the children so far (a streamed array keeps none)
+    int streams = -1;        // an element array of the top level: its ElementKind
+    int delivers = -1;       // an element of such an array: its kind, handed over when closed
+    std::size_t index = 0;   // ... and its index
   };
   std::vector<Level> stack_;
+  ElementSink* sink_;
+  json element_;  // the element of an element array being built
 
   // Pointer of the value being parsed now.
   std::string here() const {
@@ -128,7 +154,7 @@ class BoundedDocumentBuilder {
       if (i + 1 < stack_.size())
         p += "/" + l.open_child;
       else if (l.node->is_array())
-        p += "/" + std::to_string(l.node->size());
+        p += "/" + std::to_string(l.count);
       else if (l.has_key)
         p += "/" + escape_token(l.key);
     }
@@ -138,14 +164,23 @@ class BoundedDocumentBuilder {
     error = located(here(), message);
     return false;
   }
-  // Adds a value where the parser is; returns where it went (nullptr: refused).
-  json* insert(json v) {
+  // Adds a value where the parser is; returns where it went (for containers) and which
+  // element array it is the element of (-1: none) with its index.
+  json* insert(json v, int* delivers, std::size_t* index) {
+    *delivers = -1;
     if (stack_.empty()) {
       root = std::move(v);
       return &root;
     }
     Level& top = stack_.back();
     if (top.node->is_array()) {
+      const std::size_t i = top.count++;
+      if (top.streams >= 0) {
+        *delivers = top.streams;
+        *index = i;
+        element_ = std::move(v);
+        return &element_;
+      }
       top.node->push_back(std::move(v));
       return &top.node->back();
     }
@@ -154,22 +189,41 @@ class BoundedDocumentBuilder {
     slot = std::move(v);
     return &slot;
   }
-  bool add(json v) { return insert(std::move(v)) != nullptr; }
+  bool add(json v) {
+    int delivers;
+    std::size_t index;
+    insert(std::move(v), &delivers, &index);
+    if (delivers >= 0) deliver(delivers, index);
+    return true;
+  }
+  void deliver(int kind, std::size_t index) {
+    sink_->element(ElementKind(kind), index, element_);
+    element_ = json();
+  }
   bool open(json container) {
     if (stack_.size() >= kMaxNativeDepth)
       return fail("nesting is deeper than " + std::to_string(kMaxNativeDepth) + " levels");
+    int streams = -1;
     if (!stack_.empty()) {
       Level& parent = stack_.back();
-      parent.open_child = parent.node->is_array() ? std::to_string(parent.node->size()) : escape_token(parent.key);
+      parent.open_child = parent.node->is_array() ? std::to_string(parent.count) : escape_token(parent.key);
+      // An array that is a member of the top-level object under an element key.
+      if (sink_ && stack_.size() == 1 && parent.node->is_object() && container.is_array())
+        for (int k = 0; k < kElementKinds; ++k)
+          if (parent.key == kElementKeys[k]) streams = k;
     }
-    json* node = insert(std::move(container));
+    Level level{nullptr, {}, false, {}, 0, streams, -1, 0};
+    level.node = insert(std::move(container), &level.delivers, &level.index);
     // Children are complete before their next sibling is added, so `node` stays valid
     // while it is on the stack.
-    stack_.push_back({node, {}, false, {}});
+    stack_.push_back(std::move(level));
     return true;
   }
   bool close() {
+    const int delivers = stack_.back().delivers;
+    const std::size_t index = stack_.back().index;
     stack_.pop_back();
+    if (delivers >= 0) deliver(delivers, index);
     return true;
   }
 };
@@ -183,27 +237,60 @@ constexpr double kUnitTolerance = 1e-9;              // unit length and perpendi
 const char* const kUnits[] = {"nm", "um", "mm", "cm", "m", "in", "ft"};
 
 // One kind of element: ids → position in its array, for references and messages.
+// Ids are below 2·count + 1024 (record() checks that first), so a dense table serves.
 struct IdTable {
   const char* kind;    // "vertex"
   const char* plural;  // "vertices": also the top-level key
-  std::unordered_map<std::uint32_t, std::size_t> index;
+  std::vector<std::uint32_t> slot;  // id → 1 + position in the array; 0: no such id
+
+  // The position of element `id`, or npos.
+  std::size_t find(std::uint64_t id) const {
+    return id < slot.size() && slot[std::size_t(id)] ? std::size_t(slot[std::size_t(id)] - 1) : std::string::npos;
+  }
+  bool contains(std::uint64_t id) const { return find(id) != std::string::npos; }
 };
 
-class DocumentReader {
+// Reads a document in two stages: element(), for each element of the element arrays as
+// the parser completes it (BoundedDocumentBuilder), then finish() with the rest of the
+// document once it has parsed. Errors come out in the order the checks are listed in
+// spec/file-format.md whatever the order of the arrays in the text: an element's error
+// is kept until finish() has checked the top level and the arrays before it.
+class DocumentReader final : public ElementSink {
  public:
   explicit DocumentReader(std::string* error) : error_(error) {}
 
-  std::optional<NativeDocument> read(const json& doc) {
+  void element(ElementKind kind, std::size_t i, const json& e) override {
+    Pending& k = pending_[kind];
+    k.count = i + 1;
+    if (k.failed) return;
+    bool ok = false;
+    switch (kind) {
+      case kVertices: ok = vertex(e, i, &d_.vertices.emplace_back()); break;
+      case kEdges: ok = edge(e, i, &d_.edges.emplace_back()); break;
+      case kLoops: ok = loop(e, i, &d_.loops.emplace_back()); break;
+      case kFaces: ok = face(e, i, &d_.faces.emplace_back()); break;
+      case kShells: ok = shell(e, i, &d_.shells.emplace_back()); break;
+      case kElementKinds: break;
+    }
+    if (!ok) {
+      k.failed = true;
+      k.failed_at = i;
+      k.error = std::move(message_);
+    }
+  }
+
+  // The document without its elements (the element arrays are there, empty).
+  std::optional<NativeDocument> finish(const json& doc) {
     NativeDocument out;
-    BodyDescription d;
-    if (!top_level(doc, &out) || !vertices(doc["vertices"], &d) || !edges(doc["edges"], &d) ||
-        !loops(doc["loops"], &d) || !faces(doc["faces"], &d) || !shells(doc["shells"], &d) || !references(d))
-      return std::nullopt;
+    if (!top_level(doc, &out) || !settle(kVertices, vertex_ids_, d_.vertices) || !settle(kEdges, edge_ids_, d_.edges) ||
+        !settle(kLoops, loop_ids_, d_.loops) || !settle(kFaces, face_ids_, d_.faces) ||
+        !settle(kShells, shell_ids_, d_.shells) || !references(d_))
+      return refuse();
     AssembleError why;
-    std::optional<Body> body = assemble(d, &why);
+    std::optional<Body> body = assemble(d_, &why);
     if (!body) {
       fail(pointer_of(why.element), why.message);
-      return std::nullopt;
+      return refuse();
     }
     out.body = std::move(*body);
     return out;
@@ -211,12 +298,42 @@ class DocumentReader {
 
  private:
   std::string* error_;
+  std::string message_;  // the last failure, located
+  BodyDescription d_;
+  // What element() saw of each array: how many, and the first element it refused.
+  struct Pending {
+    std::size_t count = 0;
+    bool failed = false;
+    std::size_t failed_at = 0;
+    std::string error;
+  };
+  Pending pending_[kElementKinds];
   IdTable vertex_ids_{"vertex", "vertices", {}}, edge_ids_{"edge", "edges", {}}, loop_ids_{"loop", "loops", {}},
       face_ids_{"face", "faces", {}}, shell_ids_{"shell", "shells", {}};
 
   bool fail(const std::string& ptr, const std::string& message) {
-    if (error_) *error_ = located(ptr, message);
+    message_ = located(ptr, message);
     return false;
+  }
+  std::optional<NativeDocument> refuse() {
+    if (error_) *error_ = std::move(message_);
+    return std::nullopt;
+  }
+
+  // Records the ids of the elements of `kind` in `t` now their count is known, in order,
+  // up to the first element element() refused, whose error comes after theirs.
+  template <class Desc>
+  bool settle(ElementKind kind, IdTable& t, const std::vector<Desc>& items) {
+    const Pending& k = pending_[kind];
+    const std::size_t good = k.failed ? k.failed_at : k.count;
+    t.slot.assign(2 * k.count + 1024, 0);
+    for (std::size_t i = 0; i < good; ++i)
+      if (!record(t, items[i].id, i, k.count)) return false;
+    if (k.failed) {
+      message_ = k.error;
+      return false;
+    }
+    return true;
   }
 
   // -- values --
@@ -302,7 +419,7 @@ class DocumentReader {
   }
   bool frame(const json& j, const std::string& ptr, geo::Frame* out) {
     if (!object_with_keys(j, ptr, {"origin", "x", "z"}, "a frame")) return false;
-    const json *o, *x, *z;
+    const json *o = nullptr, *x = nullptr, *z = nullptr;
     if (!(o = required(j, ptr, "origin")) || !(x = required(j, ptr, "x")) || !(z = required(j, ptr, "z"))) return false;
     if (!vec3(*o, at(ptr, "origin"), &out->origin) || !unit_vec3(*x, at(ptr, "x"), &out->x) ||
         !unit_vec3(*z, at(ptr, "z"), &out->z))
@@ -395,7 +512,7 @@ class DocumentReader {
     const std::string what = "a " + type + " curve";
     if (type == "line") {
       geo::Line c;
-      const json *o, *d;
+      const json *o = nullptr, *d = nullptr;
       if (!object_with_keys(*j, ptr, {"type", "origin", "direction"}, what) || !(o = required(*j, ptr, "origin")) ||
           !(d = required(*j, ptr, "direction")) || !vec3(*o, at(ptr, "origin"), &c.origin) ||
           !unit_vec3(*d, at(ptr, "direction"), &c.direction))
@@ -403,14 +520,14 @@ class DocumentReader {
       *out = c;
     } else if (type == "circle") {
       geo::Circle c;
-      const json* f;
+      const json *f = nullptr;
       if (!object_with_keys(*j, ptr, {"type", "frame", "radius"}, what) || !(f = required(*j, ptr, "frame")) ||
           !frame(*f, at(ptr, "frame"), &c.frame) || !field(*j, ptr, "radius", &c.radius, &DocumentReader::positive))
         return false;
       *out = c;
     } else if (type == "ellipse") {
       geo::Ellipse c;
-      const json* f;
+      const json *f = nullptr;
       if (!object_with_keys(*j, ptr, {"type", "frame", "major_radius", "minor_radius"}, what) ||
           !(f = required(*j, ptr, "frame")) || !frame(*f, at(ptr, "frame"), &c.frame) ||
           !field(*j, ptr, "major_radius", &c.major_radius, &DocumentReader::positive) ||
@@ -422,7 +539,7 @@ class DocumentReader {
       *out = c;
     } else if (type == "polyline") {
       geo::Polyline c;
-      const json* pts;
+      const json *pts = nullptr;
       if (!object_with_keys(*j, ptr, {"type", "points", "chordal_error"}, what) ||
           !(pts = required(*j, ptr, "points")) ||
           !field(*j, ptr, "chordal_error", &c.chordal_error, &DocumentReader::number))
@@ -450,7 +567,7 @@ class DocumentReader {
     if (!object_with_keys(doc, "", {"format", "version", "units", "vertices", "edges", "loops", "faces", "shells", "meta"},
                           "a kintsugi-brep document"))
       return false;
-    const json *format, *version, *units;
+    const json *format = nullptr, *version = nullptr, *units = nullptr;
     if (!(format = required(doc, "", "format"))) return false;
     if (*format != "kintsugi-brep") return fail("/format", "expected \"kintsugi-brep\", found " + describe_value(*format));
     if (!(version = required(doc, "", "version"))) return false;
@@ -489,7 +606,7 @@ class DocumentReader {
         const json& defect = (*d)[i];
         const std::string p = at("/meta/defects", i);
         if (!defect.is_object()) return fail(p, "expected a defect (an object), found " + describe_value(defect));
-        const json *type, *elements, *size;
+        const json *type = nullptr, *elements = nullptr, *size = nullptr;
         double s;
         if (!(type = required(defect, p, "type")) || !(elements = required(defect, p, "elements")) ||
             !(size = required(defect, p, "size")))
@@ -502,154 +619,120 @@ class DocumentReader {
     return true;
   }
 
-  // Records `id` of element `i` in `t`: unique, and below the bound assemble() enforces
-  // (2·count + 1024), checked here too so the message names the place.
+  // Records `id` of element `i` in `t` (sized for `count`): unique, and below the bound
+  // assemble() enforces (2·count + 1024), checked here too so the message names the place.
   bool record(IdTable& t, std::uint32_t id, std::size_t i, std::size_t count) {
-    const std::string p = at(at("", t.plural), i) + "/id";
     std::uint64_t limit = 2 * std::uint64_t(count) + 1024;
     if (id >= limit)
-      return fail(p, std::string(t.kind) + " id " + std::to_string(id) + " is too large for " + std::to_string(count) +
-                         " " + t.plural + " (ids must be below " + std::to_string(limit) + ")");
-    auto [it, fresh] = t.index.emplace(id, i);
-    if (!fresh)
-      return fail(p, std::string(t.kind) + " id " + std::to_string(id) + " is used twice (also at " +
-                         at(at("", t.plural), it->second) + ")");
+      return fail(at(at("", t.plural), i) + "/id", std::string(t.kind) + " id " + std::to_string(id) +
+                                                      " is too large for " + std::to_string(count) + " " + t.plural +
+                                                      " (ids must be below " + std::to_string(limit) + ")");
+    if (std::size_t seen = t.find(id); seen != std::string::npos)
+      return fail(at(at("", t.plural), i) + "/id", std::string(t.kind) + " id " + std::to_string(id) +
+                                                      " is used twice (also at " + at(at("", t.plural), seen) + ")");
+    t.slot[id] = std::uint32_t(i + 1);
     return true;
   }
 
-  bool vertices(const json& a, BodyDescription* d) {
-    d->vertices.resize(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string p = at("/vertices", i);
-      const json& v = a[i];
-      VertexDesc& out = d->vertices[i];
-      const json *id_j, *pt;
-      if (!object_with_keys(v, p, {"id", "point"}, "a vertex") || !(id_j = required(v, p, "id")) ||
-          !(pt = required(v, p, "point")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
-          !vec3(*pt, at(p, "point"), &out.point) || !record(vertex_ids_, out.id, i, a.size()))
+  // One element each; ids are recorded by settle() once the array's length is known.
+
+  bool vertex(const json& v, std::size_t i, VertexDesc* out) {
+    const std::string p = at("/vertices", i);
+    const json *id_j = nullptr, *pt = nullptr;
+    return object_with_keys(v, p, {"id", "point"}, "a vertex") && (id_j = required(v, p, "id")) &&
+           (pt = required(v, p, "point")) && id(*id_j, at(p, "id"), kMaxId, &out->id) &&
+           vec3(*pt, at(p, "point"), &out->point);
+  }
+
+  bool edge(const json& e, std::size_t i, EdgeDesc* out) {
+    const std::string p = at("/edges", i);
+    const json *id_j = nullptr, *he = nullptr;
+    if (!object_with_keys(e, p, {"id", "he", "curve"}, "an edge") || !(id_j = required(e, p, "id")) ||
+        !(he = required(e, p, "he")) || !id(*id_j, at(p, "id"), kMaxEdgeId, &out->id))
+      return false;
+    const std::string hp = at(p, "he");
+    if (!he->is_array() || he->size() != 2)
+      return fail(hp, "expected the edge's two half-edges (an array of 2 objects), found " +
+                          (he->is_array() ? "an array of " + std::to_string(he->size()) : describe_value(*he)));
+    for (std::size_t side = 0; side < 2; ++side) {
+      const json& h = (*he)[side];
+      const std::string sp = at(hp, side);
+      const json *o = nullptr, *n = nullptr, *l = nullptr;
+      if (!object_with_keys(h, sp, {"origin", "next", "loop"}, "a half-edge") || !(o = required(h, sp, "origin")) ||
+          !(n = required(h, sp, "next")) || !(l = required(h, sp, "loop")) ||
+          !id(*o, at(sp, "origin"), kMaxId, &out->he[side].origin) ||
+          !id(*n, at(sp, "next"), kMaxId, &out->he[side].next) || !id(*l, at(sp, "loop"), kMaxId, &out->he[side].loop))
         return false;
+    }
+    return curve(optional_member(e, "curve"), at(p, "curve"), &out->curve);
+  }
+
+  bool loop(const json& l, std::size_t i, LoopDesc* out) {
+    const std::string p = at("/loops", i);
+    const json *id_j = nullptr;
+    if (!object_with_keys(l, p, {"id", "face", "first", "lone"}, "a loop") || !(id_j = required(l, p, "id")) ||
+        !id(*id_j, at(p, "id"), kMaxId, &out->id))
+      return false;
+    std::uint32_t v;
+    if (const json* f = optional_member(l, "face")) {
+      if (!id(*f, at(p, "face"), kMaxId, &v)) return false;
+      out->face = v;
+    }
+    const json* first = optional_member(l, "first");
+    const json* lone = optional_member(l, "lone");
+    if (first && lone)
+      return fail(p, "has both \"first\" and \"lone\": a loop is either a cycle of half-edges or a lone vertex");
+    if (!first && !lone) return fail(p, "has neither \"first\" (a half-edge of its cycle) nor \"lone\" (its lone vertex)");
+    if (first) {
+      if (!id(*first, at(p, "first"), kMaxId, &v)) return false;
+      out->first = v;
+    } else {
+      if (!id(*lone, at(p, "lone"), kMaxId, &v)) return false;
+      out->lone = v;
     }
     return true;
   }
 
-  bool edges(const json& a, BodyDescription* d) {
-    d->edges.resize(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string p = at("/edges", i);
-      const json& e = a[i];
-      EdgeDesc& out = d->edges[i];
-      const json *id_j, *he;
-      if (!object_with_keys(e, p, {"id", "he", "curve"}, "an edge") || !(id_j = required(e, p, "id")) ||
-          !(he = required(e, p, "he")) || !id(*id_j, at(p, "id"), kMaxEdgeId, &out.id))
-        return false;
-      const std::string hp = at(p, "he");
-      if (!he->is_array() || he->size() != 2)
-        return fail(hp, "expected the edge's two half-edges (an array of 2 objects), found " +
-                            (he->is_array() ? "an array of " + std::to_string(he->size()) : describe_value(*he)));
-      for (std::size_t side = 0; side < 2; ++side) {
-        const json& h = (*he)[side];
-        const std::string sp = at(hp, side);
-        const json *o, *n, *l;
-        if (!object_with_keys(h, sp, {"origin", "next", "loop"}, "a half-edge") || !(o = required(h, sp, "origin")) ||
-            !(n = required(h, sp, "next")) || !(l = required(h, sp, "loop")) ||
-            !id(*o, at(sp, "origin"), kMaxId, &out.he[side].origin) ||
-            !id(*n, at(sp, "next"), kMaxId, &out.he[side].next) ||
-            !id(*l, at(sp, "loop"), kMaxId, &out.he[side].loop))
-          return false;
-      }
-      if (!curve(optional_member(e, "curve"), at(p, "curve"), &out.curve) ||
-          !record(edge_ids_, out.id, i, a.size()))
-        return false;
-    }
-    return true;
+  bool face(const json& f, std::size_t i, FaceDesc* out) {
+    const std::string p = at("/faces", i);
+    const json *id_j = nullptr, *shell = nullptr, *ls = nullptr, *sense = nullptr;
+    if (!object_with_keys(f, p, {"id", "shell", "loops", "same_sense", "surface"}, "a face") ||
+        !(id_j = required(f, p, "id")) || !(shell = required(f, p, "shell")) || !(ls = required(f, p, "loops")) ||
+        !(sense = required(f, p, "same_sense")) || !id(*id_j, at(p, "id"), kMaxId, &out->id) ||
+        !id(*shell, at(p, "shell"), kMaxId, &out->shell))
+      return false;
+    const std::string lp = at(p, "loops");
+    if (!ls->is_array() || ls->empty())
+      return fail(lp, "expected the face's loops, outer first (a non-empty array), found " +
+                          (ls->is_array() ? "an empty array" : describe_value(*ls)));
+    out->loops.resize(ls->size());
+    for (std::size_t k = 0; k < ls->size(); ++k)
+      if (!id((*ls)[k], at(lp, k), kMaxId, &out->loops[k])) return false;
+    if (!sense->is_boolean()) return fail(at(p, "same_sense"), "expected true or false, found " + describe_value(*sense));
+    out->same_sense = sense->get<bool>();
+    return surface(optional_member(f, "surface"), at(p, "surface"), &out->surface);
   }
 
-  bool loops(const json& a, BodyDescription* d) {
-    d->loops.resize(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string p = at("/loops", i);
-      const json& l = a[i];
-      LoopDesc& out = d->loops[i];
-      const json* id_j;
-      if (!object_with_keys(l, p, {"id", "face", "first", "lone"}, "a loop") || !(id_j = required(l, p, "id")) ||
-          !id(*id_j, at(p, "id"), kMaxId, &out.id))
-        return false;
-      std::uint32_t v;
-      if (const json* f = optional_member(l, "face")) {
-        if (!id(*f, at(p, "face"), kMaxId, &v)) return false;
-        out.face = v;
-      }
-      const json* first = optional_member(l, "first");
-      const json* lone = optional_member(l, "lone");
-      if (first && lone)
-        return fail(p, "has both \"first\" and \"lone\": a loop is either a cycle of half-edges or a lone vertex");
-      if (!first && !lone)
-        return fail(p, "has neither \"first\" (a half-edge of its cycle) nor \"lone\" (its lone vertex)");
-      if (first) {
-        if (!id(*first, at(p, "first"), kMaxId, &v)) return false;
-        out.first = v;
-      } else {
-        if (!id(*lone, at(p, "lone"), kMaxId, &v)) return false;
-        out.lone = v;
-      }
-      if (!record(loop_ids_, out.id, i, a.size())) return false;
-    }
-    return true;
-  }
-
-  bool faces(const json& a, BodyDescription* d) {
-    d->faces.resize(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string p = at("/faces", i);
-      const json& f = a[i];
-      FaceDesc& out = d->faces[i];
-      const json *id_j, *shell, *ls, *sense;
-      if (!object_with_keys(f, p, {"id", "shell", "loops", "same_sense", "surface"}, "a face") ||
-          !(id_j = required(f, p, "id")) || !(shell = required(f, p, "shell")) || !(ls = required(f, p, "loops")) ||
-          !(sense = required(f, p, "same_sense")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
-          !id(*shell, at(p, "shell"), kMaxId, &out.shell))
-        return false;
-      const std::string lp = at(p, "loops");
-      if (!ls->is_array() || ls->empty())
-        return fail(lp, "expected the face's loops, outer first (a non-empty array), found " +
-                            (ls->is_array() ? "an empty array" : describe_value(*ls)));
-      out.loops.resize(ls->size());
-      for (std::size_t k = 0; k < ls->size(); ++k)
-        if (!id((*ls)[k], at(lp, k), kMaxId, &out.loops[k])) return false;
-      if (!sense->is_boolean()) return fail(at(p, "same_sense"), "expected true or false, found " + describe_value(*sense));
-      out.same_sense = sense->get<bool>();
-      if (!surface(optional_member(f, "surface"), at(p, "surface"), &out.surface) ||
-          !record(face_ids_, out.id, i, a.size()))
-        return false;
-    }
-    return true;
-  }
-
-  bool shells(const json& a, BodyDescription* d) {
-    d->shells.resize(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string p = at("/shells", i);
-      const json& s = a[i];
-      ShellDesc& out = d->shells[i];
-      const json *id_j, *genus;
-      if (!object_with_keys(s, p, {"id", "genus"}, "a shell") || !(id_j = required(s, p, "id")) ||
-          !(genus = required(s, p, "genus")) || !id(*id_j, at(p, "id"), kMaxId, &out.id) ||
-          !id(*genus, at(p, "genus"), kMaxId, &out.genus) || !record(shell_ids_, out.id, i, a.size()))
-        return false;
-    }
-    return true;
+  bool shell(const json& s, std::size_t i, ShellDesc* out) {
+    const std::string p = at("/shells", i);
+    const json *id_j = nullptr, *genus = nullptr;
+    return object_with_keys(s, p, {"id", "genus"}, "a shell") && (id_j = required(s, p, "id")) &&
+           (genus = required(s, p, "genus")) && id(*id_j, at(p, "id"), kMaxId, &out->id) &&
+           id(*genus, at(p, "genus"), kMaxId, &out->genus);
   }
 
   // -- references --
 
-  bool refers(const IdTable& t, std::uint64_t id, const std::string& ptr, const char* noun) {
-    if (id <= kMaxId && t.index.count(std::uint32_t(id))) return true;
-    return fail(ptr, std::string("refers to ") + noun + " " + std::to_string(id) + ", which does not exist");
+  // Pointers are spelled only for the reference that is wrong: a million-face document
+  // has millions of references.
+  bool refers(const IdTable& t, std::uint64_t id, const char* noun, const std::function<std::string()>& ptr) {
+    if (t.contains(id)) return true;
+    return fail(ptr(), std::string("refers to ") + noun + " " + std::to_string(id) + ", which does not exist");
   }
-  bool refers_to_halfedge(std::uint32_t h, const std::string& ptr) {
-    if (edge_ids_.index.count(h >> 1)) return true;
-    return fail(ptr, "refers to half-edge " + std::to_string(h) + ", which does not exist (there is no edge " +
-                         std::to_string(h >> 1) + ")");
+  bool refers_to_halfedge(std::uint32_t h, const std::function<std::string()>& ptr) {
+    if (edge_ids_.contains(h >> 1)) return true;
+    return fail(ptr(), "refers to half-edge " + std::to_string(h) + ", which does not exist (there is no edge " +
+                           std::to_string(h >> 1) + ")");
   }
 
   // Every reference names an element of the right kind; what they say about each other
@@ -657,33 +740,32 @@ class DocumentReader {
   bool references(const BodyDescription& d) {
     for (std::size_t i = 0; i < d.edges.size(); ++i)
       for (std::size_t side = 0; side < 2; ++side) {
-        const std::string p = at(at(at("/edges", i), "he"), side);
+        auto p = [&](const char* key) { return [=] { return at(at(at(at("/edges", i), "he"), side), key); }; };
         const HalfedgeDesc& h = d.edges[i].he[side];
-        if (!refers(vertex_ids_, h.origin, at(p, "origin"), "vertex") || !refers_to_halfedge(h.next, at(p, "next")) ||
-            !refers(loop_ids_, h.loop, at(p, "loop"), "loop"))
+        if (!refers(vertex_ids_, h.origin, "vertex", p("origin")) || !refers_to_halfedge(h.next, p("next")) ||
+            !refers(loop_ids_, h.loop, "loop", p("loop")))
           return false;
       }
     for (std::size_t i = 0; i < d.loops.size(); ++i) {
-      const std::string p = at("/loops", i);
+      auto p = [&](const char* key) { return [=] { return at(at("/loops", i), key); }; };
       const LoopDesc& l = d.loops[i];
-      if (l.face && !refers(face_ids_, *l.face, at(p, "face"), "face")) return false;
-      if (l.first && !refers_to_halfedge(*l.first, at(p, "first"))) return false;
-      if (l.lone && !refers(vertex_ids_, *l.lone, at(p, "lone"), "vertex")) return false;
+      if (l.face && !refers(face_ids_, *l.face, "face", p("face"))) return false;
+      if (l.first && !refers_to_halfedge(*l.first, p("first"))) return false;
+      if (l.lone && !refers(vertex_ids_, *l.lone, "vertex", p("lone"))) return false;
     }
     for (std::size_t i = 0; i < d.faces.size(); ++i) {
-      const std::string p = at("/faces", i);
       const FaceDesc& f = d.faces[i];
-      if (!refers(shell_ids_, f.shell, at(p, "shell"), "shell")) return false;
+      if (!refers(shell_ids_, f.shell, "shell", [&] { return at(at("/faces", i), "shell"); })) return false;
       for (std::size_t k = 0; k < f.loops.size(); ++k) {
-        const std::string lp = at(at(p, "loops"), k);
-        if (!refers(loop_ids_, f.loops[k], lp, "loop")) return false;
-        const LoopDesc& l = d.loops[loop_ids_.index.at(f.loops[k])];
+        auto lp = [&] { return at(at(at("/faces", i), "loops"), k); };
+        if (!refers(loop_ids_, f.loops[k], "loop", lp)) return false;
+        const LoopDesc& l = d.loops[loop_ids_.find(f.loops[k])];
         if (!l.face)
-          return fail(lp, "loop " + std::to_string(l.id) + " is a border cycle (its face is null), not a loop of face " +
-                              std::to_string(f.id));
+          return fail(lp(), "loop " + std::to_string(l.id) + " is a border cycle (its face is null), not a loop of face " +
+                                std::to_string(f.id));
         if (*l.face != f.id)
-          return fail(lp, "loop " + std::to_string(l.id) + " belongs to face " + std::to_string(*l.face) +
-                              ", not to face " + std::to_string(f.id));
+          return fail(lp(), "loop " + std::to_string(l.id) + " belongs to face " + std::to_string(*l.face) +
+                                ", not to face " + std::to_string(f.id));
       }
     }
     return true;
@@ -700,8 +782,8 @@ class DocumentReader {
       return std::size_t(end - element.data());
     };
     auto place = [&](const IdTable& t, std::uint64_t id) -> std::string {
-      auto it = id <= kMaxId ? t.index.find(std::uint32_t(id)) : t.index.end();
-      return it == t.index.end() ? std::string() : at(at("", t.plural), it->second);
+      const std::size_t i = t.find(id);
+      return i == std::string::npos ? std::string() : at(at("", t.plural), i);
     };
     const std::pair<const char*, const IdTable*> words[] = {{"vertex ", &vertex_ids_}, {"edge ", &edge_ids_},
                                                             {"loop ", &loop_ids_},     {"face ", &face_ids_},
@@ -745,12 +827,13 @@ std::optional<NativeDocument> read_native(std::string_view text, std::string* er
     return std::nullopt;
   }
   try {
-    BoundedDocumentBuilder builder;
+    DocumentReader reader(error);
+    BoundedDocumentBuilder builder(&reader);
     if (!json::sax_parse(text.begin(), text.end(), &builder)) {
       if (error) *error = builder.error.empty() ? "not valid JSON" : builder.error;
       return std::nullopt;
     }
-    return DocumentReader(error).read(builder.root);
+    return reader.finish(builder.root);
   } catch (const std::exception& e) {
     // Nothing above throws on bad input; this is for running out of memory.
     if (error) *error = std::string("cannot read the document: ") + e.what();
@@ -775,8 +858,10 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
   if (S_ISREG(st.st_mode) && std::uint64_t(st.st_size) > kMaxNativeBytes)
     return refuse("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                   std::to_string(kMaxNativeBytes) + "; refusing to read it");
-  // Read with the cap, not the size from stat: the file may grow, or be a pipe.
+  // Read with the cap, not the size from stat: the file may grow, or be a pipe. The size
+  // from stat only saves the string from growing by copies.
   std::string text;
+  if (S_ISREG(st.st_mode)) text.reserve(std::size_t(st.st_size));
   std::array<char, 1 << 16> chunk;
   for (;;) {
     ssize_t n = ::read(fd, chunk.data(), chunk.size());

@@ -291,6 +291,70 @@ TEST(NativeJsonMalformed, InvalidTopologyIsRefusedByTheInvariantCheck) {
   EXPECT_ERROR_AT(m, "/edges/1/he/0", "already the next of another");
 }
 
+// The reader checks each element as soon as it has parsed it (and then drops it), but
+// reports in the order spec/file-format.md lists the checks, whatever the order of the
+// text: syntax first, then the top level, then vertices, edges, loops, faces, shells,
+// each in index order, ids included.
+TEST(NativeJsonMalformed, ErrorsComeInTheSpecsOrderWhateverTheTextsOrder) {
+  // Two broken arrays, the later kind first in the text: the earlier kind is reported.
+  std::string m = error_after(box(), [](ojson& j) {
+    ojson reordered = ojson::object();
+    for (const char* key : {"format", "version", "units", "shells", "faces", "loops", "edges", "vertices", "meta"})
+      reordered[key] = j[key];
+    reordered["shells"][0]["genus"] = "one";
+    reordered["edges"][2]["he"][0]["origin"] = -1;
+    reordered["vertices"][5]["point"] = "here";
+    j = reordered;
+  });
+  EXPECT_ERROR_AT(m, "/vertices/5/point", "expected [x, y, z]");
+  // An element error, then a syntax error further on: the syntax error.
+  std::string text = write_native(box());
+  std::string broken = text;
+  broken.replace(broken.find("\"origin\": 0"), 12, "\"origin\": \"a\"");
+  m = error_of(broken.substr(0, broken.rfind("\"meta\"")) + "\"meta\": {");
+  EXPECT_NE(m.find("not valid JSON"), std::string::npos) << m;
+  // An element error, then an unknown key at the top level: the top level.
+  m = error_after(box(), [](ojson& j) {
+    j["edges"][0]["he"][0]["origin"] = "a";
+    j["colour"] = "red";
+  });
+  EXPECT_ERROR_AT(m, "/colour", "unknown key");
+  // A repeated id before a malformed element, and after one.
+  m = error_after(box(), [](ojson& j) {
+    j["vertices"][3]["id"] = 0;
+    j["vertices"][5]["point"] = nullptr;
+  });
+  EXPECT_ERROR_AT(m, "/vertices/3/id", "used twice (also at /vertices/0)");
+  m = error_after(box(), [](ojson& j) {
+    j["vertices"][5]["id"] = 0;
+    j["vertices"][3]["point"] = nullptr;
+  });
+  EXPECT_ERROR_AT(m, "/vertices/3/point", "expected [x, y, z]");
+  // The id bound counts the whole array, elements after a malformed one included.
+  m = error_after(box(), [](ojson& j) {
+    j["shells"][0]["id"] = 1026;  // below 2·2 + 1024 only once the second shell counts
+    j["shells"].push_back({{"id", 7}, {"genus", "none"}});
+  });
+  EXPECT_ERROR_AT(m, "/shells/1/genus", "expected a non-negative integer");
+  m = error_after(box(), [](ojson& j) {
+    j["shells"][0]["id"] = 1028;
+    j["shells"].push_back({{"id", 7}, {"genus", "none"}});
+  });
+  EXPECT_ERROR_AT(m, "/shells/0/id", "too large for 2 shells");
+}
+
+TEST(NativeJsonMalformed, ElementArraysThatAreNotArraysOrNotAtTheTop) {
+  EXPECT_ERROR_AT(error_after(box(), [](ojson& j) { j["edges"] = {{"id", 0}}; }), "/edges", "expected an array");
+  // "vertices" inside meta is meta's business, not an element array.
+  std::string text = write_native(box(), {{"vertices", {{{"id", "not a vertex"}}}}});
+  std::string error;
+  auto doc = read_native(text, &error);
+  ASSERT_TRUE(doc) << error;
+  EXPECT_EQ(doc->meta["vertices"][0]["id"], "not a vertex");
+  // A document that is an array of element arrays is not a kintsugi document.
+  EXPECT_NE(error_of("[{\"vertices\": [1]}]").find("expected a kintsugi-brep document"), std::string::npos);
+}
+
 TEST(NativeJsonMalformed, OversizedTextIsRefusedBeforeParsing) {
   // A view that claims more than the limit, over a small buffer: the reader must look at
   // its size only, and never at the bytes (AddressSanitizer would notice).
