@@ -252,7 +252,11 @@ std::vector<Vec3> sample_curve(const Curve& c, double t0, double t1, double chor
   const double eps = std::max(chordal_error, 1e-15 * speed);
   // Chord of length h on a circle of radius ρ has sagitta ≈ h²/(8ρ).
   const double h = eps < kappa_r ? std::sqrt(8.0 * eps * kappa_r) : kappa_r;
-  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(t1 - t0) * speed / h)));
+  // At most 2^20 pieces: a full circle so sampled is within 5e-12 of its radius, finer
+  // than any modelling precision we use, and a tiny error asked of a large curve cannot
+  // make an unbounded allocation.
+  constexpr double kMaxPieces = double(1 << 20);
+  const int n = static_cast<int>(std::clamp(std::ceil(std::abs(t1 - t0) * speed / h), 1.0, kMaxPieces));
   for (int i = 0; i <= n; ++i) out.push_back(evaluate(c, t0 + (t1 - t0) * i / n));
   return out;
 }

@@ -76,7 +76,15 @@ geo::Box body_bounds(const Body& b) {
   geo::Box box;
   for (VertexH v : b.vertices()) box.add(b.point(v));
   // Curved edges bulge beyond their vertices (a circle has one vertex): sample them coarsely.
-  double size = box.empty() ? 1.0 : std::max(box.diagonal(), 1e-300);
+  // The sampling scale: the vertices' extent, or a circle's radius where that is larger
+  // (a torus or a sphere may have all its vertices in one point).
+  double size = box.empty() ? 0.0 : box.diagonal();
+  for (EdgeH e : b.edges()) {
+    const geo::Curve& c = b.curve(e);
+    if (const auto* k = std::get_if<geo::Circle>(&c)) size = std::max(size, std::abs(k->radius));
+    if (const auto* k = std::get_if<geo::Ellipse>(&c)) size = std::max(size, std::abs(k->major_radius));
+  }
+  if (!(size > 0)) size = 1.0;
   for (EdgeH e : b.edges()) {
     const geo::Curve& c = b.curve(e);
     if (std::holds_alternative<geo::Line>(c) || std::holds_alternative<std::monostate>(c)) continue;

@@ -1,4 +1,5 @@
 // Measures on kernel elements against closed forms.
+#include "geometry/curve.h"
 #include "invariants/element_geometry.h"
 #include "kernel/builders.h"
 
@@ -56,6 +57,17 @@ TEST(ElementGeometry, EdgeLengthsOfCircles) {
   EXPECT_NEAR(lines, 1, 1e-12);
   Body s = build::sphere(2);
   EXPECT_NEAR(edge_length(s, s.edges()[0]), M_PI * 2, 1e-12);  // a meridian from pole to pole
+}
+
+// A torus has one vertex: its size comes from its circles, sampled at a scale taken from
+// their radii (it was taken from the vertices' extent, zero here, and sampling then ran
+// to tens of millions of points).
+TEST(ElementGeometry, ModelSizeOfATorusFromItsCircles) {
+  EXPECT_NEAR(model_size(build::torus(3, 1)), std::sqrt(8.0 * 8.0 + 8.0 * 8.0 + 2.0 * 2.0), 1e-2);
+  // However small the error asked for, sampling a curve is bounded.
+  geo::Circle c;
+  c.radius = 5;
+  EXPECT_LE(geo::sample_curve(c, 0, 2 * M_PI, 1e-300).size(), std::size_t((1 << 20) + 1));
 }
 
 TEST(ElementGeometry, Distances) {
