@@ -17,15 +17,22 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_BezierCurve.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomConvert.hxx>
 #include <GeomLib_IsPlanarSurface.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierCurve.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_ConicalSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
+#include <Geom_ElementarySurface.hxx>
 #include <Geom_Ellipse.hxx>
 #include <Geom_Line.hxx>
 #include <Geom_OffsetCurve.hxx>
@@ -50,6 +57,8 @@
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Ax3.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Lin.hxx>
 #include <gp_Pnt2d.hxx>
 
 #include <cmath>
@@ -177,8 +186,125 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   return r;
 }
 
-// The edge's curve as ours, along the FORWARD edge (half-edge 2e).
-geo::Curve edge_curve(const TopoDS_Edge& forward, int index, std::vector<std::string>* warnings) {
+// An edge whose 3D curve is free-form but which runs along a parameter line of an
+// elementary face it bounds (its pcurve keeps u or v constant) lies on that iso-curve,
+// which is a line or a circle: the seams OpenCASCADE's ShapeFix adds to seamless
+// periodic faces get B-spline 3D curves approximating exactly that. Accepted when points
+// along the edge are on the iso-curve within the edge's tolerance (at least 1e-7); a
+// circle is oriented to run the edge's way, so that the arc from the edge's first vertex
+// to its last is the edge.
+std::optional<geo::Curve> iso_curve(const TopoDS_Edge& forward, const std::vector<TopoDS_Face>& faces) {
+  BRepAdaptor_Curve ad(forward);
+  const double t0 = ad.FirstParameter(), t1 = ad.LastParameter();
+  const double tol = std::max(1e-7, BRep_Tool::Tolerance(forward));
+  for (const TopoDS_Face& face : faces) {
+    double a = 0, b = 0;
+    Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(forward, face, a, b);
+    if (pc.IsNull()) continue;
+    while (auto t = Handle(Geom2d_TrimmedCurve)::DownCast(pc)) pc = t->BasisCurve();
+    // The parameter line the pcurve runs along: a line parallel to an axis, or a
+    // B-spline or Bezier curve whose poles all have the same u (or v).
+    std::optional<std::pair<bool, double>> along;  // (u constant, the constant)
+    if (auto line2d = Handle(Geom2d_Line)::DownCast(pc)) {
+      const gp_Dir2d d = line2d->Direction();
+      const gp_Pnt2d o = line2d->Location();
+      if (std::abs(d.X()) < 1e-12)
+        along = {true, o.X()};
+      else if (std::abs(d.Y()) < 1e-12)
+        along = {false, o.Y()};
+    } else {
+      std::vector<gp_Pnt2d> poles;
+      if (auto bs = Handle(Geom2d_BSplineCurve)::DownCast(pc))
+        for (int i = 1; i <= bs->NbPoles(); ++i) poles.push_back(bs->Pole(i));
+      else if (auto bz = Handle(Geom2d_BezierCurve)::DownCast(pc))
+        for (int i = 1; i <= bz->NbPoles(); ++i) poles.push_back(bz->Pole(i));
+      if (poles.size() >= 2) {
+        double u0 = poles[0].X(), v0 = poles[0].Y();
+        bool same_u = true, same_v = true;
+        for (const gp_Pnt2d& p : poles) {
+          same_u = same_u && std::abs(p.X() - u0) <= 1e-9 * std::max(1.0, std::abs(u0));
+          same_v = same_v && std::abs(p.Y() - v0) <= 1e-9 * std::max(1.0, std::abs(v0));
+        }
+        if (same_u != same_v) along = {same_u, same_u ? u0 : v0};
+      }
+    }
+    if (!along) continue;
+    Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+    while (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(s)) s = t->BasisSurface();
+    if (Handle(Geom_ElementarySurface)::DownCast(s).IsNull()) continue;
+    Handle(Geom_Curve) iso;
+    try {
+      iso = along->first ? s->UIso(along->second) : s->VIso(along->second);
+    } catch (const Standard_Failure&) {
+      iso.Nullify();
+    }
+    if (iso.IsNull()) continue;
+    while (auto t = Handle(Geom_TrimmedCurve)::DownCast(iso)) iso = t->BasisCurve();  // a sphere's meridians
+    std::optional<geo::Curve> out;
+    if (auto line = Handle(Geom_Line)::DownCast(iso)) {
+      gp_Lin lin = line->Lin();
+      bool on = true;
+      for (int i = 0; i <= 8 && on; ++i) on = lin.Distance(ad.Value(t0 + (t1 - t0) * i / 8.0)) <= tol;
+      if (on) out = geo::Line{vec(lin.Location()), vec(lin.Direction())};
+    } else if (auto circ = Handle(Geom_Circle)::DownCast(iso)) {
+      gp_Circ ci = circ->Circ();
+      bool on = true;
+      for (int i = 0; i <= 8 && on; ++i) on = ci.Distance(ad.Value(t0 + (t1 - t0) * i / 8.0)) <= tol;
+      if (on) {
+        // Run the edge's way: the circle's tangent at the edge's start along the edge's.
+        gp_Pnt p;
+        gp_Vec tangent;
+        ad.D1(t0, p, tangent);
+        gp_Vec radial(ci.Location(), p);
+        gp_Vec circle_tangent = gp_Vec(ci.Axis().Direction()).Crossed(radial);
+        if (circle_tangent.Dot(tangent) < 0)
+          ci.SetPosition(gp_Ax2(ci.Location(), ci.Axis().Direction().Reversed(), ci.XAxis().Direction()));
+        out = geo::Circle{frame(ci.Position()), ci.Radius()};
+      }
+    }
+    if (out) return out;
+  }
+  return std::nullopt;
+}
+
+// A B-spline or Bezier edge curve whose poles are all within the edge's tolerance (at
+// least 1e-7) of the line through its ends is that line: the curve lies in the convex
+// hull of its poles (weights are positive). The straight seams ShapeFix adds on free-form
+// faces (a cone written as a B-spline surface) are such curves.
+std::optional<geo::Curve> straight_curve(const TopoDS_Edge& forward, const Handle(Geom_Curve)& c, double f, double l) {
+  Handle(Geom_Curve) basis = c;
+  while (auto t = Handle(Geom_TrimmedCurve)::DownCast(basis)) basis = t->BasisCurve();
+  std::vector<gp_Pnt> poles;
+  if (auto bs = Handle(Geom_BSplineCurve)::DownCast(basis)) {
+    // Only the poles of the edge's part of the curve count: a copy cut to [f, l].
+    Handle(Geom_BSplineCurve) cut = Handle(Geom_BSplineCurve)::DownCast(bs->Copy());
+    if (f > cut->FirstParameter() || l < cut->LastParameter()) {
+      try {
+        cut->Segment(f, l);
+      } catch (const Standard_Failure&) {
+        return std::nullopt;
+      }
+    }
+    for (int i = 1; i <= cut->NbPoles(); ++i) poles.push_back(cut->Pole(i));
+  } else if (auto bz = Handle(Geom_BezierCurve)::DownCast(basis)) {
+    if (f > bz->FirstParameter() || l < bz->LastParameter()) return std::nullopt;
+    for (int i = 1; i <= bz->NbPoles(); ++i) poles.push_back(bz->Pole(i));
+  } else {
+    return std::nullopt;
+  }
+  gp_Pnt p0 = c->Value(f), p1 = c->Value(l);
+  const double tol = std::max(1e-7, BRep_Tool::Tolerance(forward));
+  if (p0.Distance(p1) <= 10 * tol) return std::nullopt;
+  gp_Lin lin(p0, gp_Dir(gp_Vec(p0, p1)));
+  for (const gp_Pnt& p : poles)
+    if (lin.Distance(p) > tol) return std::nullopt;
+  return geo::Line{vec(p0), vec(lin.Direction())};
+}
+
+// The edge's curve as ours, along the FORWARD edge (half-edge 2e); `faces` are the
+// faces it bounds.
+geo::Curve edge_curve(const TopoDS_Edge& forward, const std::vector<TopoDS_Face>& faces, int index,
+                      std::vector<std::string>* warnings) {
   double f = 0, l = 0;
   Handle(Geom_Curve) c = BRep_Tool::Curve(forward, f, l);
   if (c.IsNull()) {
@@ -196,6 +322,19 @@ geo::Curve edge_curve(const TopoDS_Edge& forward, int index, std::vector<std::st
       return geo::Circle{frame(circ->Position()), circ->Radius()};
     if (auto el = Handle(Geom_Ellipse)::DownCast(basis))
       return geo::Ellipse{frame(el->Position()), el->MajorRadius(), el->MinorRadius()};
+  }
+  if (std::optional<geo::Curve> iso = iso_curve(forward, faces)) {
+    warnings->push_back("edge #" + std::to_string(index) + ": " +
+                        (c.IsNull() ? std::string("no 3D curve") : std::string(c->DynamicType()->Name())) +
+                        " recognised as a " + geo::curve_type_name(*iso) + " (a parameter line of its face)");
+    return *iso;
+  }
+  if (!c.IsNull()) {
+    if (std::optional<geo::Curve> line = straight_curve(forward, c, f, l)) {
+      warnings->push_back("edge #" + std::to_string(index) + ": " + c->DynamicType()->Name() +
+                          " recognised as a line (its poles are on one)");
+      return *line;
+    }
   }
   // Anything else: a polyline within a chordal error proportional to the edge's size.
   BRepAdaptor_Curve ad(forward);
@@ -539,7 +678,10 @@ std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& loc
       std::uint32_t h = std::uint32_t(2 * e + side);
       ed.he[side] = {he_origin[h], he_next[h], he_loop[h]};
     }
-    ed.curve = edge_curve(TopoDS::Edge(edge_map(int(e + 1)).Oriented(TopAbs_FORWARD)), int(e + 1), warnings);
+    std::vector<TopoDS_Face> beside;
+    for (int side = 0; side < 2; ++side)
+      if (std::uint32_t lf = loops[he_loop[2 * e + side]].face; lf != kNone) beside.push_back(faces[lf]);
+    ed.curve = edge_curve(TopoDS::Edge(edge_map(int(e + 1)).Oriented(TopAbs_FORWARD)), beside, int(e + 1), warnings);
     d.edges.push_back(std::move(ed));
   }
   for (std::uint32_t li = 0; li < loops.size(); ++li) {

@@ -7,6 +7,7 @@
 // could change the topology switched off.
 #include "io/occt/convert.h"
 
+#include "geometry/curve.h"
 #include "geometry/surface.h"
 #include "geometry/types.h"
 
@@ -273,11 +274,36 @@ class Builder {
     }
   }
 
+  // A whole sphere (one loop: its seam both ways) is written to STEP by OpenCASCADE as
+  // a face bounded by a vertex only, and read back with the seam OpenCASCADE puts at
+  // u = 0. So that the seam comes back where it is, the sphere is written with its x
+  // axis turned (about its z axis; same points, same normals) towards the seam: the
+  // direction, in the equator's plane, of the seam's midpoint.
+  std::optional<Vec3> whole_sphere_seam(FaceH f, const geo::Sphere& sp) const {
+    std::vector<LoopH> ls = b_.loops_of(f);
+    if (ls.size() != 1 || b_.is_lone(ls[0])) return std::nullopt;
+    std::vector<HalfedgeH> hs = b_.loop_halfedges(ls[0]);
+    if (hs.size() != 2 || edge_of(hs[0]) != edge_of(hs[1])) return std::nullopt;
+    EdgeH e = edge_of(hs[0]);
+    HalfedgeH h = halfedge_of(e, 0);
+    const geo::Curve& c = b_.curve(e);
+    if (std::holds_alternative<std::monostate>(c)) return std::nullopt;
+    geo::ParameterRange r = geo::parameter_range(c, b_.point(b_.origin(h)), b_.point(b_.target(h)), kTol);
+    Vec3 d = geo::evaluate(c, 0.5 * (r.t0 + r.t1)) - sp.frame.origin;
+    Vec3 z = sp.frame.z.normalized();
+    d -= d.dot(z) * z;
+    if (d.norm() <= 1e-9 * std::max(1.0, sp.radius)) return std::nullopt;
+    return Vec3(d.normalized());
+  }
+
   bool make_face(FaceH f, std::string* error) {
     const geo::Surface& s = b_.surface(f);
     if (std::holds_alternative<std::monostate>(s)) return *error = "face " + f.str() + ": no surface", false;
     if (std::string p = geo::surface_problem(s); !p.empty()) return *error = "face " + f.str() + ": " + p, false;
     Handle(Geom_Surface) gs = to_geom(s);
+    if (const auto* sp = std::get_if<geo::Sphere>(&s))
+      if (std::optional<Vec3> x = whole_sphere_seam(f, *sp))
+        gs = new Geom_SphericalSurface(gp_Ax3(pnt(sp->frame.origin), dir(sp->frame.z), dir(*x)), sp->radius);
     bool sense = b_.same_sense(f);
     TopoDS_Face tf;
     bb_.MakeFace(tf, gs, kTol);

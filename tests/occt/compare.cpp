@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -79,6 +80,18 @@ std::set<FaceH> faces_at(const Body& x, VertexH v) {
       for (LoopH l : x.loops_of(f))
         if (x.is_lone(l) && x.lone_vertex(l) == v) fs.insert(f);
   return fs;
+}
+
+// Whether parameter t is within the range an edge spans on curve c (modulo the period
+// on a closed curve), with a little slack.
+bool within(const geo::Curve& c, const geo::ParameterRange& r, double t) {
+  double lo = std::min(r.t0, r.t1), hi = std::max(r.t0, r.t1);
+  double slack = 1e-6 * (hi - lo) + 1e-12;
+  double period = geo::period(c);
+  if (period <= 0) return t >= lo - slack && t <= hi + slack;
+  double d = std::fmod(t - r.t0, period);
+  if (d < 0) d += period;
+  return d <= (r.t1 - r.t0) + slack || d >= period - slack;
 }
 
 std::string str(const Vec3& p) {
@@ -155,9 +168,16 @@ std::string compare_bodies(const Body& a, const Body& b, double tol) {
         HalfedgeH g = halfedge_of(eb, s);
         if (face_or_border(b, g) != ml || face_or_border(b, twin(g)) != mr) continue;
         if (b.origin(g) != v0 || b.target(g) != v1) continue;
+        // On b's curve and within the part of it the edge spans (not the rest of a
+        // circle through the same end points).
+        HalfedgeH g0 = halfedge_of(eb, 0);
+        geo::ParameterRange prb =
+            geo::parameter_range(b.curve(eb), b.point(b.origin(g0)), b.point(b.target(g0)), 1e-9);
         bool on = true;
-        for (const Vec3& p : pts)
-          if (geo::closest_point(b.curve(eb), p).distance > tol * std::max(1.0, p.norm())) on = false;
+        for (const Vec3& p : pts) {
+          geo::CurvePoint q = geo::closest_point(b.curve(eb), p);
+          if (q.distance > tol * std::max(1.0, p.norm()) || !within(b.curve(eb), prb, q.t)) on = false;
+        }
         if (on) {
           found = true;
           used[eb.idx()] = 1;

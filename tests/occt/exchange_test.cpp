@@ -176,6 +176,38 @@ TEST(TwoShells, TouchingSolidsKeepTheirOwnVerticesAndFaces) {
   }
 }
 
+TEST(Compare, SeesAnArcTakenTheOtherWayRound) {
+  // The sphere's seam turned to the other half of its circle: the same end points (the
+  // poles), the same circle, the same faces, but a different edge.
+  Body b = build::sphere(2.0), c = build::sphere(2.0);
+  EdgeH e = c.edges()[0];
+  geo::Circle ci = std::get<geo::Circle>(c.curve(e));
+  ci.frame.z = -ci.frame.z;
+  c.set_curve(e, ci);
+  EXPECT_NE(test::compare_bodies(b, c), "");
+  EXPECT_NE(test::compare_bodies(c, b), "");
+  EXPECT_EQ(test::compare_bodies(b, b), "");
+}
+
+TEST(WholeSphere, KeepsItsSeamThroughStep) {
+  // OpenCASCADE writes a whole sphere (a face bounded by its seam only) to STEP as a
+  // face with a vertex loop, and its reader puts the seam back at u = 0. Our seam is on
+  // some other meridian: it must come back there, for every meridian.
+  for (double turn : {0.0, 1.0, 2.5, M_PI, 4.0}) {
+    Body b = build::sphere(1.5);
+    Eigen::Matrix3d r = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    EdgeH e = b.edges()[0];
+    geo::Circle ci = std::get<geo::Circle>(b.curve(e));
+    ci.frame.x = r * ci.frame.x;
+    ci.frame.z = r * ci.frame.z;
+    b.set_curve(e, ci);
+    b.clear_journal();
+    Body s = test::round_trip(b, CadFormat::step, "whole_sphere");
+    EXPECT_EQ(test::compare_bodies(b, s), "") << "turn " << turn;
+    EXPECT_EQ(test::compare_bodies(s, b), "") << "turn " << turn;
+  }
+}
+
 TEST(OcctCheck, FlaggsAFaceTurnedInsideOut) {
   // A box with one face's sense flipped: its wire now runs the wrong way round for
   // OpenCASCADE, and the shell is no longer orientable consistently.

@@ -200,7 +200,8 @@ TEST(PaperBosses, RoundTripUnderRigidMotions) {
     Body b = bosses();
     Eigen::Matrix3d r = Eigen::AngleAxisd(angles[i], axes[i].normalized()).toRotationMatrix();
     test::transform(b, r, Eigen::Vector3d(3.5 * i - 2, 11.0 * i, -7.25));
-    for (const Violation& x : check_geometry(b, 1e-9).violations) ADD_FAILURE() << "motion " << i << ": " << to_string(x);
+    for (const Violation& x : check_geometry(b, 1e-9).violations)
+      ADD_FAILURE() << "motion " << i << ": " << to_string(x);
     expect_round_trips(b, "bosses_moved_" + std::to_string(i));
   }
 }

@@ -4,6 +4,7 @@
 // Expected counts are derived from the files themselves (their entity counts, worked
 // out in the comments) and cross-checked against OpenCASCADE's own reading of the file
 // (TopExp maps of the shape STEPControl_Reader gives), never taken from our importer.
+#include "geometry/curve.h"
 #include "invariants/geometry_check.h"
 #include "invariants/topology_check.h"
 #include "io/occt/exchange.h"
@@ -72,6 +73,12 @@ std::string str(const Counts& c) {
          " L " + std::to_string(c.loops) + " S " + std::to_string(c.shells) + " B " + std::to_string(c.border_cycles);
 }
 
+int warnings_with(const io::CadImport& in, const std::string& text) {
+  int n = 0;
+  for (const std::string& w : in.warnings) n += w.find(text) != std::string::npos ? 1 : 0;
+  return n;
+}
+
 std::map<std::string, int> surface_types(const Body& b) {
   std::map<std::string, int> n;
   for (FaceH f : b.faces()) n[geo::surface_type_name(b.surface(f))]++;
@@ -94,6 +101,10 @@ io::CadImport import_part(const std::string& file, const Counts& expect, const s
   EXPECT_EQ(str(b.counts()), str(expect)) << file;
   EXPECT_EQ(str(occt_counts(kDir + file)), str(expect)) << file << ": OpenCASCADE's own count";
   for (const Violation& v : check_topology(b)) ADD_FAILURE() << file << ": " << to_string(v);
+  // Every face of these parts is analytic, so every edge is a parameter line of one of
+  // its faces (or was written as a line, circle or ellipse): none is approximated.
+  for (EdgeH e : b.edges())
+    EXPECT_FALSE(std::holds_alternative<geo::Polyline>(b.curve(e))) << file << ": " << e.str() << " is a polyline";
   GeometryReport g = check_geometry(b, 1e-7);
   for (const Violation& v : g.violations) ADD_FAILURE() << file << ": " << to_string(v);
   io::OcctVerdict v = io::occt_check(b);
@@ -113,9 +124,11 @@ io::CadImport import_part(const std::string& file, const Counts& expect, const s
 TEST(ThirdParty, RedCubeBlueCylinder) {
   // Cube: 8 V, 12 E, 6 F. The cylinder's side is seamless in the file (two circles, an
   // annulus), but OpenCASCADE's STEP reader runs ShapeFix, whose FixMissingSeam adds a
-  // seam edge: 2 V, 3 E, 3 F, one loop per face, as OpenCASCADE's own cylinders.
+  // seam edge: 2 V, 3 E, 3 F, one loop per face, as OpenCASCADE's own cylinders. The
+  // seam's 3D curve is a B-spline; it runs along the cylinder's axis, so it is a line.
   io::CadImport in = import_part("red_cube_blue_cylinder.step", counts(10, 15, 9, 9, 2), "m", 1000.0);
   const Body& b = in.body;
+  EXPECT_EQ(warnings_with(in, "recognised as a line (a parameter line of its face)"), 1);
   int cylinders = 0;
   for (FaceH f : b.faces())
     if (const auto* cyl = std::get_if<geo::Cylinder>(&b.surface(f))) {
@@ -179,9 +192,15 @@ TEST(ThirdParty, ZooPipeWithConicalStep) {
       EXPECT_NEAR(std::abs(c->half_angle), M_PI / 6, 1e-9);
     }
   }
-  int recognised = 0;
-  for (const std::string& w : in.warnings) recognised += w.find("B-spline surface recognised as a cone") != std::string::npos;
-  EXPECT_EQ(recognised, 2);
+  EXPECT_EQ(warnings_with(in, "B-spline surface recognised as a cone"), 2);
+  // The six seams ShapeFix adds have B-spline 3D curves: on the four cylinders they are
+  // parameter lines (lines); on the two B-spline cones, B-splines whose poles are on a
+  // line. All six are lines.
+  EXPECT_EQ(warnings_with(in, "recognised as a line (a parameter line of its face)"), 4);
+  EXPECT_EQ(warnings_with(in, "recognised as a line (its poles are on one)"), 2);
+  int lines = 0;
+  for (EdgeH e : b.edges()) lines += std::holds_alternative<geo::Line>(b.curve(e)) ? 1 : 0;
+  EXPECT_EQ(lines, 6);
 }
 
 // Zoo's (KittyCAD) kcl-samples pipe with a bend: a quarter of a torus tube, in metres.
@@ -208,6 +227,23 @@ TEST(ThirdParty, ZooPipeWithBendIsTwoTorusFaces) {
   ASSERT_EQ(minor.size(), 2u);
   EXPECT_NEAR(minor[0], 0.127, 1e-12);
   EXPECT_NEAR(minor[1], 0.254, 1e-12);
+  // The seams ShapeFix adds run along the bend (a quarter of a circle about the y axis,
+  // from angle 0 to 90°); their B-spline curves are recognised as those circles, and
+  // each edge is the quarter inside the part (x ≥ 0, z ≤ 0), not the rest of the circle.
+  EXPECT_EQ(warnings_with(in, "recognised as a circle (a parameter line of its face)"), 2);
+  int arcs = 0;
+  for (EdgeH e : b.edges()) {
+    HalfedgeH h = halfedge_of(e, 0);
+    if (b.origin(h) == b.target(h)) continue;  // the closed circles at the ends
+    ASSERT_TRUE(std::holds_alternative<geo::Circle>(b.curve(e))) << e.str();
+    ++arcs;
+    geo::ParameterRange r = geo::parameter_range(b.curve(e), b.point(b.origin(h)), b.point(b.target(h)));
+    geo::Vec3 mid = geo::evaluate(b.curve(e), 0.5 * (r.t0 + r.t1));
+    EXPECT_GT(mid.x(), 0.1) << e.str();
+    EXPECT_LT(mid.z(), -0.1) << e.str();
+    EXPECT_NEAR(std::abs(mid.x()), std::abs(mid.z()), 1e-9) << e.str() << ": halfway along the bend";
+  }
+  EXPECT_EQ(arcs, 2);
 }
 
 }  // namespace
