@@ -229,7 +229,8 @@ Body sphere(double radius) {
   Body b;
   MvfsResult m = must(euler::mvfs(b, Vec3(0, 0, radius)), "mvfs");
   MevResult seam = must(euler::mev(b, Corner::in_lone(m.loop), Vec3(0, 0, -radius)), "mev");
-  // The seam is the meridian through +x, from the north pole down.
+  // The seam is the meridian through -x (the circle's frame: z = -y, x = +z, so its
+  // second axis is z × x = -x), from the north pole down.
   b.set_curve(seam.edge, geo::Circle{frame(Vec3::Zero(), -Vec3::UnitY(), Vec3::UnitZ()), radius});
   b.set_surface(m.face, geo::Sphere{frame(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX()), radius});
   b.clear_journal();
