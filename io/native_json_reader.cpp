@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <iterator>
+#include <memory>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -819,17 +821,15 @@ class DocumentReader final : public ElementSink {
 
 }  // namespace
 
-std::optional<NativeDocument> read_native(std::string_view text, std::string* error) {
-  if (text.size() > kMaxNativeBytes) {
-    if (error)
-      *error = "document is " + std::to_string(text.size()) + " bytes, more than the limit of " +
-               std::to_string(kMaxNativeBytes);
-    return std::nullopt;
-  }
+namespace {
+
+// The whole reader over characters [first, last).
+template <class Iterator>
+std::optional<NativeDocument> parse_document(Iterator first, Iterator last, std::string* error) {
   try {
     DocumentReader reader(error);
     BoundedDocumentBuilder builder(&reader);
-    if (!json::sax_parse(text.begin(), text.end(), &builder)) {
+    if (!json::sax_parse(std::move(first), std::move(last), &builder)) {
       if (error) *error = builder.error.empty() ? "not valid JSON" : builder.error;
       return std::nullopt;
     }
@@ -839,6 +839,82 @@ std::optional<NativeDocument> read_native(std::string_view text, std::string* er
     if (error) *error = std::string("cannot read the document: ") + e.what();
     return std::nullopt;
   }
+}
+
+// A file's bytes, read in 64 KiB chunks as the parser asks for them, so the text is never
+// in memory as a whole. A read error or more than kMaxNativeBytes ends the input as if
+// the file ended there, and is remembered: the caller reports it instead of whatever the
+// parser made of the truncated text.
+class FileSource {
+ public:
+  explicit FileSource(int fd) : fd_(fd) {}
+
+  bool more() { return pos_ < len_ || refill(); }
+  char get() const { return buf_[pos_]; }
+  void next() { ++pos_; }
+  // Reads what is left (to find whether the file goes past the limit, or cannot be read).
+  void drain() {
+    while (refill()) pos_ = len_;
+  }
+  int read_errno() const { return read_errno_; }
+  bool too_large() const { return too_large_; }
+
+  // The input iterator nlohmann's parser reads through (it uses only !=, * and ++).
+  struct Iterator {
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = char;
+    FileSource* source;  // nullptr: the end
+    char operator*() const { return source->get(); }
+    Iterator& operator++() {
+      source->next();
+      return *this;
+    }
+    bool operator==(const Iterator& other) const { return at_end() == other.at_end(); }
+    bool operator!=(const Iterator& other) const { return !(*this == other); }
+    bool at_end() const { return !source || !source->more(); }
+  };
+
+ private:
+  int fd_;
+  std::array<char, 1 << 16> buf_;
+  std::size_t pos_ = 0, len_ = 0;
+  std::uint64_t total_ = 0;
+  bool ended_ = false;
+  int read_errno_ = 0;
+  bool too_large_ = false;
+
+  bool refill() {
+    pos_ = len_ = 0;
+    while (!ended_) {
+      ssize_t n = ::read(fd_, buf_.data(), buf_.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) read_errno_ = errno;
+      if (n > 0 && total_ + std::uint64_t(n) > kMaxNativeBytes) too_large_ = true;
+      if (n <= 0 || too_large_) {
+        ended_ = true;
+        break;
+      }
+      total_ += std::uint64_t(n);
+      len_ = std::size_t(n);
+      return true;
+    }
+    return false;
+  }
+};
+
+}  // namespace
+
+std::optional<NativeDocument> read_native(std::string_view text, std::string* error) {
+  if (text.size() > kMaxNativeBytes) {
+    if (error)
+      *error = "document is " + std::to_string(text.size()) + " bytes, more than the limit of " +
+               std::to_string(kMaxNativeBytes);
+    return std::nullopt;
+  }
+  return parse_document(text.begin(), text.end(), error);
 }
 
 std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error) {
@@ -858,24 +934,16 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
   if (S_ISREG(st.st_mode) && std::uint64_t(st.st_size) > kMaxNativeBytes)
     return refuse("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                   std::to_string(kMaxNativeBytes) + "; refusing to read it");
-  // Read with the cap, not the size from stat: the file may grow, or be a pipe. The size
-  // from stat only saves the string from growing by copies.
-  std::string text;
-  if (S_ISREG(st.st_mode)) text.reserve(std::size_t(st.st_size));
-  std::array<char, 1 << 16> chunk;
-  for (;;) {
-    ssize_t n = ::read(fd, chunk.data(), chunk.size());
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return refuse(std::string("cannot read: ") + std::strerror(errno));
-    }
-    if (n == 0) break;
-    if (text.size() + std::size_t(n) > kMaxNativeBytes)
-      return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
-    text.append(chunk.data(), std::size_t(n));
-  }
+  // Parsed as it is read, with the cap checked as it reads, not only from stat: the file
+  // may grow, or be a pipe.
+  auto source = std::make_unique<FileSource>(fd);
   std::string why;
-  auto doc = read_native(text, &why);
+  auto doc = parse_document(FileSource::Iterator{source.get()}, FileSource::Iterator{nullptr}, &why);
+  // A file past the limit or unreadable is refused as such, whatever the parser said.
+  if (!doc) source->drain();
+  if (source->read_errno()) return refuse(std::string("cannot read: ") + std::strerror(source->read_errno()));
+  if (source->too_large())
+    return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
   if (!doc) return refuse(why);
   return doc;
 }
