@@ -25,6 +25,9 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <thread>
+
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace kintsugi::io {
@@ -431,6 +434,37 @@ TEST_F(NativeJsonFile, AProducerThatFailsOrThrowsLeavesTheOldFile) {
       path("out"), [](const ChunkSink& sink) { return sink("new ") && sink("") && sink("contents"); }, &error))
       << error;
   EXPECT_EQ(contents(path("out")), "new contents");
+}
+
+TEST_F(NativeJsonFile, ReadingAFileInChunksSaysWhatReadingItsTextSays) {
+  // read_native_file parses 64 KiB at a time; its verdicts and messages (line and column
+  // included) are those of read_native on the whole text, wherever the chunks break.
+  zoo::ZooModel m = zoo::family(2500, 0.3, 6);
+  const std::string text = write_native(m.body, m.meta(), "mm");
+  for (std::size_t cut : {text.size(), text.size() - 3, text.size() / 2 + 1, std::size_t(1) << 16, std::size_t(70000)}) {
+    std::string part = text.substr(0, cut);
+    if (cut == std::size_t(70000)) part.back() = '@';
+    ASSERT_TRUE(write_file_atomically(path("t.json"), part, nullptr));
+    std::string from_file, from_text;
+    const bool file_ok = read_native_file(path("t.json"), &from_file).has_value();
+    const bool text_ok = read_native(part, &from_text).has_value();
+    EXPECT_EQ(file_ok, text_ok) << cut;
+    if (!text_ok) {
+      EXPECT_EQ(from_file, path("t.json") + ": " + from_text) << cut;
+    }
+  }
+}
+
+TEST_F(NativeJsonFile, ReadsFromAPipe) {
+  // Not a regular file: no size from stat, the cap is checked as it reads.
+  ASSERT_EQ(::mkfifo(path("p.json").c_str(), 0600), 0);
+  const std::string text = write_native(build::torus(3, 1), {{"tolerance", 0.5}});
+  std::thread writer([&] { std::ofstream(path("p.json"), std::ios::binary) << text; });
+  std::string error;
+  auto doc = read_native_file(path("p.json"), &error);
+  writer.join();
+  ASSERT_TRUE(doc) << error;
+  EXPECT_TRUE(doc->body.equals(build::torus(3, 1)));
 }
 
 }  // namespace
