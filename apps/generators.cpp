@@ -48,6 +48,11 @@ Generator paper(int n) {
 
 }  // namespace
 
+// A million faces makes a native file of about 870 MB: larger would pass the reader's
+// 1 GiB limit (io/native_json.h), and a model written that could not be read back is
+// no use as a benchmark.
+constexpr long long kMaxGeneratedFaces = 1'000'000;
+
 const std::vector<Generator>& generators() {
   static const std::vector<Generator> table = {
       {"box", "  --sx X --sy Y --sz Z   edge lengths (default 1 1 1)", {"--sx", "--sy", "--sz"}, {},
@@ -72,19 +77,19 @@ const std::vector<Generator>& generators() {
        [](const Args& a) { return plain(build::sphere(num(a, "--radius", 1))); }},
       {"torus", "  --major R (3) --minor r (1), r < R", {"--major", "--minor"}, {},
        [](const Args& a) { return plain(build::torus(num(a, "--major", 3), num(a, "--minor", 1))); }},
-      {"grid", "  --faces N (6..10000000, default 600)   a unit box whose sides are cut into k x k quads, 6k^2 ~ N",
+      {"grid", "  --faces N (6..1000000, default 600)   a unit box whose sides are cut into k x k quads, 6k^2 ~ N",
        {"--faces", "--size"}, {},
        [](const Args& a) {
-         return plain(build::grid_box(std::size_t(whole(a, "--faces", 600, 6, 10'000'000)), num(a, "--size", 1)));
+         return plain(build::grid_box(std::size_t(whole(a, "--faces", 600, 6, kMaxGeneratedFaces)), num(a, "--size", 1)));
        }},
       {"family",
-       "  --faces N (10..10000000, default 1000) --defect-rate R (0..1, default 0.1) --seed S (default 1)\n"
+       "  --faces N (10..1000000, default 1000) --defect-rate R (0..1, default 0.1) --seed S (default 1)\n"
        "  a plate with a k x k grid of blocks, pyramids and cylindrical bosses, R x (features) defects injected",
        {"--faces", "--defect-rate", "--seed"}, {},
        [](const Args& a) {
          double rate = num(a, "--defect-rate", 0.1);
          if (!(rate >= 0 && rate <= 1)) throw std::invalid_argument("--defect-rate must be between 0 and 1");
-         return from_zoo(zoo::family(std::size_t(whole(a, "--faces", 1000, 10, 10'000'000)), rate,
+         return from_zoo(zoo::family(std::size_t(whole(a, "--faces", 1000, 10, kMaxGeneratedFaces)), rate,
                                      std::uint64_t(whole(a, "--seed", 1, 0, (1LL << 62) + ((1LL << 62) - 1)))));
        }},
   };

@@ -66,7 +66,7 @@ std::optional<Model> load_model(const std::string& path, std::string* error) {
 bool save_model(const Model& m, const std::string& path, const std::string& input, std::string* error) {
   auto fmt = format_of(path, error);
   if (!fmt) return false;
-  if (*fmt == "json") return io::write_file_atomically(path, io::write_native(m.body, m.meta, m.units), error, input);
+  if (*fmt == "json") return io::write_native_file(path, m.body, m.meta, m.units, error, input);  // streamed
 #ifdef KINTSUGI_HAVE_OCCT
   std::error_code ec;
   if (!input.empty() && std::filesystem::exists(path, ec) && std::filesystem::equivalent(path, input, ec)) {

@@ -35,6 +35,17 @@ for verb in generate check measure detect; do
 done
 expect 0 "generate --list" -- "$K" generate --list
 for m in box prism pyramid cylinder cone sphere torus grid; do contains "$m" "--list names $m"; done
+for n in 1 2 3 4 5 6 7 8 9 10; do
+  expect 0 "generate paper-$n" -- "$K" generate "paper-$n" -o "$dir/paper$n.json"
+  expect 0 "check paper-$n" -- "$K" check "$dir/paper$n.json"
+  expect 0 "detect paper-$n" -- "$K" detect "$dir/paper$n.json"
+  contains "from meta.tolerance" "detect paper-$n takes meta.tolerance and says so"
+  expect 0 "generate paper-$n --clean" -- "$K" generate "paper-$n" --clean -o "$dir/paper${n}c.json"
+  expect 0 "detect paper-$n --clean" -- "$K" detect "$dir/paper${n}c.json"
+  contains ": 0 problem(s)" "the clean paper-$n has no problems"
+done
+expect 2 "family over a million faces is refused" -- "$K" generate family --faces 2000000 -o "$dir/big.json"
+contains "from 10 to 1000000" "the refusal says the range"
 for m in box prism pyramid cylinder cone sphere torus grid; do
   expect 0 "generate $m" -- "$K" generate "$m" -o "$dir/$m.json"
   expect 0 "check $m" -- "$K" check "$dir/$m.json"
