@@ -1,6 +1,7 @@
 #include "invariants/geometry_check.h"
 
 #include "geometry/curve.h"
+#include "geometry/polygon.h"
 #include "geometry/surface.h"
 #include "invariants/element_geometry.h"
 
@@ -111,8 +112,7 @@ GeometryReport check_geometry(const Body& b, double precision) {
       auto seg = halfedge_polyline(b, h, std::max(precision, 1e-300) * 1e5);
       pts.insert(pts.end(), seg.begin(), seg.end() - 1);
     }
-    geo::Vec3 n = geo::Vec3::Zero();
-    for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
+    geo::Vec3 n = geo::polygon_normal(pts);
     geo::Vec3 outward = plane->frame.z * (b.same_sense(f) ? 1.0 : -1.0);
     if (n.dot(outward) <= 0)
       run.r.violations.push_back({"face_sense", {f.str()}, "outer loop turns clockwise about the outward normal", 0.0});

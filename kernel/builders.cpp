@@ -1,5 +1,6 @@
 #include "kernel/builders.h"
 
+#include "geometry/polygon.h"
 #include "kernel/euler.h"
 
 #include <cmath>
@@ -125,13 +126,14 @@ std::vector<Vec2> regular_polygon(int n, double r) {
 void assign_planar_geometry(Body& b) {
   for (FaceH f : b.faces()) {
     std::vector<VertexH> vs = b.loop_vertices(b.outer_loop(f));
-    Vec3 n = Vec3::Zero(), c = Vec3::Zero();
-    for (std::size_t i = 0; i < vs.size(); ++i) {
-      const Vec3 &p = b.point(vs[i]), &q = b.point(vs[(i + 1) % vs.size()]);
-      n += p.cross(q);
-      c += p;
+    std::vector<Vec3> pts;
+    Vec3 c = Vec3::Zero();
+    for (VertexH v : vs) {
+      pts.push_back(b.point(v));
+      c += b.point(v);
     }
     c /= double(vs.size());
+    Vec3 n = geo::polygon_normal(pts);
     Vec3 x = b.point(vs[1 % vs.size()]) - b.point(vs[0]);
     if (x.cross(n).norm() < 1e-12 * (1 + x.norm())) x = n.unitOrthogonal();
     b.set_surface(f, geo::Plane{frame(c, n, x)}, true);

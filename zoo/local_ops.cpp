@@ -1,6 +1,7 @@
 #include "zoo/local_ops.h"
 
 #include "geometry/curve.h"
+#include "geometry/polygon.h"
 
 #include <Eigen/Dense>
 
@@ -45,12 +46,7 @@ Vec3 outward_normal(const Body& b, FaceH f) {
   return b.same_sense(f) ? p->frame.z : Vec3(-p->frame.z);
 }
 
-Vec3 newell(const Body& b, LoopH l) {
-  std::vector<Vec3> pts = loop_points(b, l);
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
-  return n;
-}
+Vec3 newell(const Body& b, LoopH l) { return geo::polygon_normal(loop_points(b, l)); }
 
 std::vector<Vec3> loop_points(const Body& b, LoopH l) {
   std::vector<Vec3> pts;
@@ -58,11 +54,7 @@ std::vector<Vec3> loop_points(const Body& b, LoopH l) {
   return pts;
 }
 
-double polygon_area(const std::vector<Vec3>& pts) {
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
-  return n.norm() / 2;
-}
+double polygon_area(const std::vector<Vec3>& pts) { return geo::polygon_area(pts); }
 
 geo::Plane plane_through(const Vec3& point, const Vec3& normal) {
   geo::Plane p;
