@@ -2,7 +2,9 @@
 
 #include "geometry/curve.h"
 #include "geometry/distance.h"
+#include "geometry/polygon.h"
 
+#include <cmath>
 #include <variant>
 
 namespace kintsugi {
@@ -60,6 +62,23 @@ geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal) {
   geo::AreaOptions o;
   o.reversed = !b.same_sense(f);
   return geo::measure_region(b.surface(f), face_boundary(b, f, chordal), o);
+}
+
+std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal) {
+  if (const auto* plane = std::get_if<geo::Plane>(&b.surface(f))) {
+    const geo::Vec3 outward = plane->frame.z.normalized() * (b.same_sense(f) ? 1.0 : -1.0);
+    AreaAndBounds r{0.0, {}};
+    // The outer loop turns counter-clockwise about the outward normal, rings clockwise;
+    // struts and seams are walked both ways and add nothing.
+    for (const std::vector<geo::Vec3>& loop : face_boundary(b, f, chordal)) {
+      r.area += outward.dot(geo::polygon_normal(loop)) / 2;
+      for (const geo::Vec3& p : loop) r.bounds.add(p);
+    }
+    if (r.area > 0 && std::isfinite(r.area)) return r;
+  }
+  geo::RegionMeasure m = face_measure(b, f, chordal);
+  if (!m.ok()) return std::nullopt;
+  return AreaAndBounds{m.area, m.bounds};
 }
 
 double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal) {

@@ -11,6 +11,7 @@
 #include "geometry/box.h"
 #include "kernel/body.h"
 
+#include <optional>
 #include <vector>
 
 namespace kintsugi {
@@ -22,6 +23,15 @@ double edge_length(const Body& b, EdgeH e);
 std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal);
 // Area, centroid, bounding box and tessellation of a face; `problem` says why not.
 geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal);
+// Only the area and bounding box: for a planar face, from its boundary polylines alone
+// (the signed areas of its loops about its outward normal; no triangulation, which is
+// what makes measuring a large model costly); otherwise face_measure's. nullopt where
+// face_measure reports a problem or the loops do not enclose a positive area.
+struct AreaAndBounds {
+  double area;
+  geo::Box bounds;
+};
+std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal);
 double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal);
 double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal);
 // Bounding box of the vertices and sampled edges: its diagonal is the model size the

@@ -13,14 +13,14 @@ Detection detect(const Body& b, const geo::Tolerances& tol) {
   c.edge_length.assign(b.edge_slots(), 0.0);
   for (EdgeH e : b.edges()) c.edge_length[e.idx()] = edge_length(b, e);
   for (FaceH f : b.faces()) {
-    geo::RegionMeasure m = face_measure(b, f, c.chordal);
+    std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, c.chordal);
     detail::FaceInfo& fi = c.faces[f.idx()];
-    if (!m.ok()) continue;  // unmeasurable faces are neither small nor slivers
+    if (!m) continue;  // unmeasurable faces are neither small nor slivers
     fi.measured = true;
-    fi.area = m.area;
-    fi.bbox_diagonal = m.bounds.diagonal();
-    fi.small = m.area < tol.length * tol.length;
-    fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m.area / fi.bbox_diagonal < tol.length;
+    fi.area = m->area;
+    fi.bbox_diagonal = m->bounds.diagonal();
+    fi.small = m->area < tol.length * tol.length;
+    fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < tol.length;
   }
   Detection d;
   detail::detect_gaps(c, d.problems);

@@ -136,6 +136,29 @@ TEST(Detect, PaperObjectsReportExactlyTheirDefects) {
   }
 }
 
+// Detection measures planar faces from their boundary polylines alone; that must agree
+// with the triangulated measure, rings, circles, gaps and struts included.
+TEST(Detect, PlanarFaceAreasAgreeWithTheTriangulatedMeasure) {
+  std::vector<zoo::ZooModel> models;
+  for (int n = 1; n <= 10; ++n)
+    for (bool clean : {false, true}) models.push_back(zoo::paper_object(n, clean));
+  models.push_back(zoo::family(400, 0.3, 7));
+  int planar = 0;
+  for (const zoo::ZooModel& m : models)
+    for (FaceH f : m.body.faces()) {
+      if (!std::holds_alternative<geo::Plane>(m.body.surface(f))) continue;
+      const double chordal = 1e-3 * m.tolerance;
+      geo::RegionMeasure full = face_measure(m.body, f, chordal);
+      std::optional<AreaAndBounds> fast = face_area_and_bounds(m.body, f, chordal);
+      ASSERT_TRUE(full.ok()) << m.source << " " << f << ": " << full.problem;
+      ASSERT_TRUE(fast.has_value()) << m.source << " " << f;
+      EXPECT_NEAR(fast->area, full.area, 1e-9 * (1 + full.area)) << m.source << " " << f;
+      EXPECT_NEAR(fast->bounds.diagonal(), full.bounds.diagonal(), 1e-9 * (1 + full.bounds.diagonal())) << m.source << " " << f;
+      ++planar;
+    }
+  EXPECT_GT(planar, 500);
+}
+
 // The scalable family: without defects it reports nothing; with them, exactly the
 // defects it records, at their places, whatever the seed and size.
 RC_GTEST_PROP(Detect, FamilyReportsExactlyItsDefects, ()) {
