@@ -3,6 +3,7 @@
 #include "io/native_json.h"
 #include "kernel/builders.h"
 #include "kernel/euler.h"
+#include "tests/io/sample_bodies.h"
 
 #include <gtest/gtest.h>
 
@@ -75,23 +76,7 @@ TEST(NativeJsonRoundTrip, LoneVertexShell) {
 }
 
 TEST(NativeJsonRoundTrip, EveryCurveAndSurfaceType) {
-  Body b = build::box();
-  auto es = b.edges();
-  auto fs = b.faces();
-  geo::Frame tilted;
-  tilted.origin = {0.1, -2.5, 1e-300};
-  tilted.x = geo::Vec3(1, 1, 0).normalized();
-  tilted.z = geo::Vec3(-1, 1, 1).normalized();
-  tilted.z = (tilted.z - tilted.z.dot(tilted.x) * tilted.x).normalized();
-  b.set_curve(es[0], geo::Circle{tilted, 0.1});
-  b.set_curve(es[1], geo::Ellipse{tilted, 3, 1.0 / 3});
-  b.set_curve(es[2], geo::Polyline{{{0, 0, 0}, {0.5, 1e-17, -0.0}, {1, 2, 3}}, 1e-6});
-  b.set_curve(es[3], geo::Curve{});
-  b.set_surface(fs[0], geo::Cylinder{tilted, 0.25}, false);
-  b.set_surface(fs[1], geo::Cone{tilted, 0.0, -0.3});
-  b.set_surface(fs[2], geo::Sphere{tilted, 1e5});
-  b.set_surface(fs[3], geo::Torus{tilted, 7, 6.999});
-  b.set_surface(fs[4], geo::Surface{});
+  Body b = test::every_geometry_type_body();
   expect_round_trip(b, "every type");
 }
 

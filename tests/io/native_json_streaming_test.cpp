@@ -10,6 +10,7 @@
 #include "io/native_json.h"
 #include "kernel/builders.h"
 #include "tests/io/reference_writer.h"
+#include "tests/io/sample_bodies.h"
 #include "tests/support/random_ops.h"
 #include "zoo/zoo.h"
 
@@ -304,23 +305,7 @@ TEST(NativeJsonStreaming, NumbersAreSpelledAsNlohmannSpellsThem) {
 }
 
 TEST(NativeJsonStreaming, BuilderSolidsWithEveryGeometryType) {
-  Body b = build::box();
-  auto es = b.edges();
-  auto fs = b.faces();
-  geo::Frame tilted;
-  tilted.origin = {0.1, -2.5, 1e-300};
-  tilted.x = geo::Vec3(1, 1, 0).normalized();
-  tilted.z = geo::Vec3(-1, 1, 1).normalized();
-  tilted.z = (tilted.z - tilted.z.dot(tilted.x) * tilted.x).normalized();
-  b.set_curve(es[0], geo::Circle{tilted, 0.1});
-  b.set_curve(es[1], geo::Ellipse{tilted, 3, 1.0 / 3});
-  b.set_curve(es[2], geo::Polyline{{{0, 0, 0}, {0.5, 1e-17, -0.0}, {1, 2, 3}}, 1e-6});
-  b.set_curve(es[3], geo::Curve{});
-  b.set_surface(fs[0], geo::Cylinder{tilted, 0.25}, false);
-  b.set_surface(fs[1], geo::Cone{tilted, 0.0, -0.3});
-  b.set_surface(fs[2], geo::Sphere{tilted, 1e5});
-  b.set_surface(fs[3], geo::Torus{tilted, 7, 6.999});
-  b.set_surface(fs[4], geo::Surface{});
+  Body b = test::every_geometry_type_body();
   EXPECT_EQ(problems(b, nlohmann::json::object(), "mm"), "") << "every type";
   EXPECT_EQ(problems(b, {{"tolerance", 1e-6}, {"note", "caf\xc3\xa9 \"quoted\" \\ / \n"}}, "in"), "") << "every type, meta";
   EXPECT_EQ(problems(Body{}, nlohmann::json::object(), "mm"), "") << "empty body";

@@ -33,4 +33,16 @@ std::string temp_file(const std::string& name, const std::string& text);
 // Exports, imports and returns the imported body (fails the test on error).
 Body round_trip(const Body& b, io::CadFormat f, const std::string& name);
 
+// Expected element counts, in the order tests write them.
+inline Counts counts(std::size_t v, std::size_t e, std::size_t f, std::size_t l, std::size_t s = 1, std::size_t bc = 0) {
+  Counts c;
+  c.vertices = v;
+  c.edges = e;
+  c.faces = f;
+  c.loops = l;
+  c.shells = s;
+  c.border_cycles = bc;
+  return c;
+}
+
 }  // namespace kintsugi::test

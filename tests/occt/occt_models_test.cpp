@@ -63,16 +63,7 @@ std::string write_shape(const TopoDS_Shape& s, const std::string& name, CadForma
   return path;
 }
 
-Counts counts(std::size_t v, std::size_t e, std::size_t f, std::size_t l, std::size_t s = 1, std::size_t bc = 0) {
-  Counts c;
-  c.vertices = v;
-  c.edges = e;
-  c.faces = f;
-  c.loops = l;
-  c.shells = s;
-  c.border_cycles = bc;
-  return c;
-}
+using test::counts;
 
 // Imports the shape through both formats; checks counts, our topology check and
 // OpenCASCADE's verdict on the result. Returns the BREP import.

@@ -36,16 +36,7 @@ std::string problems(const io::OcctVerdict& v) {
   return s;
 }
 
-Counts counts(std::size_t v, std::size_t e, std::size_t f, std::size_t l, std::size_t s, std::size_t bc = 0) {
-  Counts c;
-  c.vertices = v;
-  c.edges = e;
-  c.faces = f;
-  c.loops = l;
-  c.shells = s;
-  c.border_cycles = bc;
-  return c;
-}
+using test::counts;
 
 // OpenCASCADE's own reading of the file, without kintsugi: vertices, edges (less the
 // degenerated ones, which kintsugi does not keep), faces, wires and shells of the shape
