@@ -1,6 +1,7 @@
 // Beautify on random defective models: a builder solid, up to four defects injected by
 // the zoo (any of the eleven types, sizes and places from the input), then the whole
 // pipeline. The result must pass check_topology; a violation aborts (the fuzzer reports it).
+#include "fuzz/die.h"
 #include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
@@ -13,12 +14,7 @@
 
 using namespace kintsugi;
 
-namespace {
-[[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "%s\n", what.c_str());
-  std::abort();
-}
-}  // namespace
+using fuzz::die;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2 || size > 64) return 0;

@@ -1,6 +1,7 @@
 // Random Euler operator sequences on the builders' solids: every operator either
 // succeeds and keeps every invariant, or refuses and changes nothing; rolling back the
 // whole sequence restores the start. A violation aborts (the fuzzer reports it).
+#include "fuzz/die.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
 #include "kernel/transaction.h"
@@ -11,12 +12,7 @@
 
 using namespace kintsugi;
 
-namespace {
-[[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "%s\n", what.c_str());
-  std::abort();
-}
-}  // namespace
+using fuzz::die;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1 || size > 4096) return 0;

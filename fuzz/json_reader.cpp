@@ -2,6 +2,7 @@
 // hanging, or undefined behaviour; and whatever it accepts must survive write → read as
 // an equal body, written identically the second time. A violation aborts (the fuzzer
 // reports it).
+#include "fuzz/die.h"
 #include "io/native_json.h"
 
 #include <cstdio>
@@ -11,12 +12,7 @@
 
 using namespace kintsugi;
 
-namespace {
-[[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "%s\n", what.c_str());
-  std::abort();
-}
-}  // namespace
+using fuzz::die;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string error;

@@ -39,6 +39,8 @@ struct Pyramid {
 Pyramid add_pyramid(Body& b, FaceH on, const Vec3& centre, double half, double height);
 
 void compact(ZooModel& m);
+// Paper object n as a ZooModel: its body, tolerance and defects, source named, compacted.
+ZooModel paper_model(int n, Body b, std::vector<KnownDefect> defects, double tol, bool clean);
 
 ZooModel paper_object8(bool clean);
 ZooModel paper_object9(bool clean);

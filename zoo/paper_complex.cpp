@@ -13,16 +13,6 @@ namespace {
 
 constexpr double kTol = 0.5;
 
-ZooModel finish(int n, Body b, std::vector<KnownDefect> d, bool clean) {
-  ZooModel m;
-  m.body = std::move(b);
-  m.tolerance = kTol;
-  m.defects = std::move(d);
-  m.source = "paper object " + std::to_string(n) + (clean ? " (clean)" : "");
-  compact(m);
-  return m;
-}
-
 Vec3 X(double x, double y, double z) { return Vec3(x, y, z); }
 
 }  // namespace
@@ -65,7 +55,7 @@ ZooModel paper_object8(bool clean) {
     // A small round gap in the plate's top face between the pyramids.
     d.push_back(make::face_gap(b, top, X(33, 15, 4), 1.5, 0));
   }
-  return finish(8, std::move(b), d, clean);
+  return paper_model(8, std::move(b), d, kTol, clean);
 }
 
 // Object 9: a pentagonal prism (circumradius 10, height 12) with a square pyramid on its
@@ -87,7 +77,7 @@ ZooModel paper_object9(bool clean) {
     d.push_back(make::chamfer(b, edge_of(halfedge_in(b, top, c(0, 12), c(1, 12))), top, 0.2, 0.2));  // top right
     d.push_back(make::edge_gap(b, halfedge_in(b, bottom, c(3, 0), c(4, 0)), 4.4, 7.4, 2.0, 3));   // bottom front
   }
-  return finish(9, std::move(b), d, clean);
+  return paper_model(9, std::move(b), d, kTol, clean);
 }
 
 // Object 10 (Figure 30, not reproduced in our copy): a 40 x 30 x 5 plate with two blocks
@@ -139,7 +129,7 @@ ZooModel paper_object10(bool clean) {
     d.push_back(pinch9);                                                                             // 9
     d.push_back(make::small_face(b, vertex_at(b, X(35.7, 10, 11)), 0.004, nullptr));                 // 11
   }
-  return finish(10, std::move(b), d, clean);
+  return paper_model(10, std::move(b), d, kTol, clean);
 }
 
 

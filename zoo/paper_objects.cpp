@@ -123,11 +123,7 @@ void compact(ZooModel& m) {
   m.body.clear_journal();
 }
 
-namespace {
-
-constexpr double kCube = 10, kTol = 0.5;
-
-ZooModel object(int n, Body b, std::vector<KnownDefect> defects, double tol, bool clean) {
+ZooModel paper_model(int n, Body b, std::vector<KnownDefect> defects, double tol, bool clean) {
   ZooModel m;
   m.body = std::move(b);
   m.tolerance = tol;
@@ -137,6 +133,11 @@ ZooModel object(int n, Body b, std::vector<KnownDefect> defects, double tol, boo
   return m;
 }
 
+namespace {
+
+constexpr double kCube = 10, kTol = 0.5;
+
+
 Body cube() { return build::box(kCube, kCube, kCube); }
 Vec3 X(double x, double y, double z) { return Vec3(x, y, z); }
 
@@ -144,14 +145,14 @@ ZooModel object1(bool clean) {
   Body b = cube();
   std::vector<KnownDefect> d;
   if (!clean) d.push_back(make::face_gap(b, face_facing(b, Vec3::UnitZ(), X(0, 0, kCube)), X(5, 5, kCube), 2.5, 4));
-  return object(1, std::move(b), d, kTol, clean);
+  return paper_model(1, std::move(b), d, kTol, clean);
 }
 
 ZooModel object2(bool clean) {
   Body b = cube();
   std::vector<KnownDefect> d;
   if (!clean) d.push_back(make::corner_gap(b, vertex_at(b, X(kCube, 0, kCube)), 1.5));
-  return object(2, std::move(b), d, kTol, clean);
+  return paper_model(2, std::move(b), d, kTol, clean);
 }
 
 ZooModel object3(bool clean) {
@@ -162,7 +163,7 @@ ZooModel object3(bool clean) {
     HalfedgeH h = halfedge_in(b, top, X(kCube, 0, kCube), X(kCube, kCube, kCube));
     d.push_back(make::edge_gap(b, h, 3.5, 6.5, 2.0, 2));
   }
-  return object(3, std::move(b), d, kTol, clean);
+  return paper_model(3, std::move(b), d, kTol, clean);
 }
 
 ZooModel object4(bool clean) {
@@ -173,7 +174,7 @@ ZooModel object4(bool clean) {
     EdgeH e = edge_of(halfedge_in(b, top, X(0, 0, kCube), X(0, kCube, kCube)));
     d.push_back(make::chamfer(b, e, top, 0.2, 0.25));
   }
-  return object(4, std::move(b), d, kTol, clean);
+  return paper_model(4, std::move(b), d, kTol, clean);
 }
 
 // Object 5: a 10 x 10 x 5 block with a 4-wide block on top standing on its left edge;
@@ -189,7 +190,7 @@ ZooModel object5(bool clean) {
     double s0 = std::abs(b.point(b.origin(h)).y() - 3), s1 = std::abs(b.point(b.origin(h)).y() - 7);
     d.push_back(make::boss_pinch(b, h, std::min(s0, s1), std::max(s0, s1), 0.3, 3.7, 3));
   }
-  return object(5, std::move(b), d, kTol, clean);
+  return paper_model(5, std::move(b), d, kTol, clean);
 }
 
 Body square_pyramid() { return build::pyramid({Vec2(0, 0), Vec2(kCube, 0), Vec2(kCube, kCube), Vec2(0, kCube)}, 8); }
@@ -201,7 +202,7 @@ ZooModel object6(bool clean) {
     Rng rng(6);
     d.push_back(make::small_face(b, vertex_at(b, X(5, 5, 8)), 0.4 * kTol * kTol, &rng));
   }
-  return object(6, std::move(b), d, kTol, clean);
+  return paper_model(6, std::move(b), d, kTol, clean);
 }
 
 ZooModel object7(bool clean) {
@@ -211,7 +212,7 @@ ZooModel object7(bool clean) {
     Rng rng(7);
     d.push_back(make::apex_short_edge(b, vertex_at(b, X(5, 5, 8)), 0.3, rng));
   }
-  return object(7, std::move(b), d, kTol, clean);
+  return paper_model(7, std::move(b), d, kTol, clean);
 }
 
 }  // namespace
