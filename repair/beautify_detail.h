@@ -52,6 +52,11 @@ FaceH parse_face(const std::string& s);
 // like the edge's present curve. nullopt with *why when none is within tolerance.
 std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::Tolerances& tol, std::string* why);
 
+// After joining pieces into edge `keep` (jekv): pieces of one closed, non-straight curve
+// (a circle cut in pieces) keep that curve; otherwise keep gets derive_edge_curve's.
+// Empty on success, else why not.
+std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol);
+
 // Puts each vertex at the point nearest its guess where the surfaces of its faces meet
 // (geo::meet_point; least squares for more than three), then re-derives the curves of
 // every edge at those vertices. Fails when the surfaces do not meet within tolerance or

@@ -141,6 +141,15 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   return c;
 }
 
+std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol) {
+  if (pieces_of_one_curve && !std::holds_alternative<geo::Line>(b.curve(keep))) return "";  // one circle, cut
+  std::string why;
+  auto curve = derive_edge_curve(b, keep, tol, &why);
+  if (!curve) return why;
+  b.set_curve(keep, *curve);
+  return "";
+}
+
 std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Vec3>>& guesses,
                            const geo::Tolerances& tol, double max_move, Touched& touched,
                            const std::set<FaceH>& ignore) {

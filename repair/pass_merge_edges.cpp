@@ -5,8 +5,6 @@
 #include "kernel/euler.h"
 #include "repair/beautify_detail.h"
 
-#include <variant>
-
 namespace kintsugi::detail {
 
 std::string repair_mergeable_edges(RepairCall& c) {
@@ -23,12 +21,7 @@ std::string repair_mergeable_edges(RepairCall& c) {
   auto r = euler::jekv(b, h);
   if (!r) return std::string("jekv refused: ") + r.error().message;
   c.touched.edges.insert(keep);
-  if (same_curve && !std::holds_alternative<geo::Line>(b.curve(keep))) return "";  // one circle cut in two
-  std::string why;
-  auto curve = derive_edge_curve(b, keep, c.tol, &why);
-  if (!curve) return why;
-  b.set_curve(keep, *curve);
-  return "";
+  return refit_joined_edge(b, keep, same_curve, c.tol);
 }
 
 }  // namespace kintsugi::detail

@@ -7,7 +7,6 @@
 #include "repair/beautify_detail.h"
 
 #include <algorithm>
-#include <variant>
 
 namespace kintsugi::detail {
 
@@ -45,12 +44,7 @@ std::string repair_short_edge_chain(RepairCall& c) {
   for (EdgeH e : chain)
     if (b.alive(e)) keep = e;
   c.touched.edges.insert(keep);
-  if (one_curve && !std::holds_alternative<geo::Line>(first_curve)) return "";  // pieces of one circle
-  std::string why;
-  auto curve = derive_edge_curve(b, keep, c.tol, &why);
-  if (!curve) return why;
-  b.set_curve(keep, *curve);
-  return "";
+  return refit_joined_edge(b, keep, one_curve, c.tol);
 }
 
 }  // namespace kintsugi::detail
