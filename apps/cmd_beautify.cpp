@@ -4,6 +4,7 @@
 #include "apps/report_json.h"
 #include "apps/tolerance_choice.h"
 #include "repair/beautify.h"
+#include "repair/pass.h"
 
 #include <chrono>
 #include <fstream>
@@ -12,19 +13,32 @@
 namespace kintsugi::cli {
 
 namespace {
-const char* kHelp =
+// The passes this build has, from the registry.
+std::string pass_list() {
+  std::string s, missing;
+  for (ProblemType t : kAllProblemTypes) {
+    if (const Pass* p = find_pass(t))
+      s += "  " + std::to_string(problem_order(t)) + ". " + p->title + ": " + p->summary + "\n";
+    else
+      missing += (missing.empty() ? "" : ", ") + std::string(problem_name(t));
+  }
+  if (!missing.empty()) s += "No pass yet (found, reported as not repaired): " + missing + ".\n";
+  return s;
+}
+
+const std::string kHelp =
     "usage: kintsugi beautify IN [--tol T] -o OUT [--report R.json]\n\n"
     "Repairs the topology of the model in IN (paper Figure 13, spec/beautify.md): the\n"
-    "problems detect finds are repaired pass by pass in the paper's order. Passes 7-11\n"
-    "(short edge chains, same-geometry faces, small faces, mergeable edges, short edges)\n"
-    "are implemented; passes 1-6 (gaps, pinched faces, small face chains, slivers) are not\n"
-    "yet, and their problems are reported as not repaired. A repair that cannot complete is\n"
-    "rolled back and reported with its reason. OUT is written atomically, never over IN.\n\n"
+    "problems detect finds are repaired pass by pass in the paper's order:\n" +
+    pass_list() +
+    "A repair that cannot complete is rolled back and reported with its reason. OUT is\n"
+    "written atomically, never over IN.\n\n"
     "  --tol T          the length tolerance (else meta.tolerance, else 1e-3 x model size)\n"
     "  -o OUT           the repaired model\n"
     "  --report R.json  {\"tolerance\", \"problems\": [{\"type\", \"elements\", \"action\",\n"
     "                   \"operators\", \"reason\", \"deviation\"}], \"counts_before\",\n"
     "                   \"counts_after\", \"problems_before\", \"problems_after\",\n"
+    "                   \"left\": [{\"type\", \"elements\"}] (what the output still has),\n"
     "                   \"max_deviation\", \"seconds\": {\"read\", \"beautify\", \"write\",\n"
     "                   \"passes\": {type: s}}}\n\n"
     "Exit: 0 written (whether or not every problem was repaired); 2 bad input or usage.\n";
@@ -90,9 +104,9 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     j["units"] = model->units;
     j["problems"] = nlohmann::json::array();
     for (const RepairEntry& p : r.problems)
-      j["problems"].push_back({{"type", problem_name(p.type)},
-                               {"elements", p.elements},
-                               {"action", p.action},
+      j["problems"].push_back({{"type", problem_name(p.problem.type)},
+                               {"elements", element_names(p.problem)},
+                               {"action", outcome_name(p.outcome)},
                                {"operators", p.operators},
                                {"reason", p.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.reason)},
                                {"deviation", p.deviation}});
@@ -100,6 +114,8 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     j["counts_after"] = counts_json(r.counts_after);
     j["problems_before"] = problem_counts(r.problems_before);
     j["problems_after"] = problem_counts(r.problems_after);
+    j["left"] = nlohmann::json::array();
+    for (const Problem& p : r.left) j["left"].push_back({{"type", problem_name(p.type)}, {"elements", element_names(p)}});
     j["max_deviation"] = r.max_deviation;
     j["max_deviation_elements"] = r.max_elements;
     j["seconds"] = {{"read", read_s}, {"beautify", fix_s}, {"write", write_s}, {"passes", nlohmann::json::object()}};
@@ -121,9 +137,9 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
       << ", edges " << r.counts_before.edges << " -> " << r.counts_after.edges << "; max deviation " << r.max_deviation
       << "\n";
   for (const RepairEntry& p : r.problems)
-    if (p.action != "repaired") {
-      out << "  not repaired: " << problem_name(p.type) << " at";
-      for (const auto& e : p.elements) out << " " << e;
+    if (p.left()) {
+      out << "  not repaired: " << problem_name(p.problem.type) << " at";
+      for (const auto& e : p.problem.elements) out << " " << element_name(e);
       out << ": " << p.reason << "\n";
     }
   return kExitOk;

@@ -63,10 +63,10 @@ int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ost
     j["problems"] = nlohmann::json::array();
     for (const Problem& p : d.problems)
       j["problems"].push_back({{"type", problem_name(p.type)},
-                               {"elements", p.elements},
+                               {"elements", element_names(p)},
                                {"measure", p.measure},
-                               {"measure_name", p.measure_name},
-                               {"subcase", p.subcase.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.subcase)}});
+                               {"measure_name", measure_name(p.measure_kind)},
+                               {"subcase", subcase_name(p).empty() ? nlohmann::json(nullptr) : nlohmann::json(subcase_name(p))}});
     j["counts"] = nlohmann::json::object();
     for (ProblemType t : kAllProblemTypes) j["counts"][problem_name(t)] = d.count(t);
     out << j.dump(2) << "\n";
@@ -74,10 +74,11 @@ int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ost
   }
   out << "tolerance " << choice->tol.length << " " << model->units << ": " << d.problems.size() << " problem(s)\n";
   for (const Problem& p : d.problems) {
-    out << "  " << std::left << std::setw(20) << problem_name(p.type) << " " << p.measure_name << " " << p.measure;
+    out << "  " << std::left << std::setw(20) << problem_name(p.type) << " " << measure_name(p.measure_kind) << " "
+        << p.measure;
     out << "  at";
-    for (const auto& e : p.elements) out << " " << e;
-    if (!p.subcase.empty()) out << "  (" << p.subcase << ")";
+    for (const auto& e : p.elements) out << " " << element_name(e);
+    if (!subcase_name(p).empty()) out << "  (" << subcase_name(p) << ")";
     out << "\n";
   }
   return kExitOk;

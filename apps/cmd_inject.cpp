@@ -1,7 +1,7 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "apps/model_files.h"
-#include "repair/problem_type.h"
+#include "problems/problem_type.h"
 #include "zoo/zoo.h"
 
 #include <algorithm>

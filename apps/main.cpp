@@ -1,5 +1,6 @@
 // kintsugi: repair the topology of reverse-engineered B-rep models.
 #include "apps/commands.h"
+#include "repair/pass.h"
 
 #include <exception>
 #include <iostream>
@@ -13,8 +14,9 @@ const std::vector<Command>& commands() {
       {"check", "check a model's topology and geometry", cmd_check},
       {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
       {"detect", "find the eleven kinds of topological problem", cmd_detect},
-      {"beautify", "repair the topology (passes 7-11 of the paper so far)", cmd_beautify},
+      {"beautify", "repair the topology with the passes listed below", cmd_beautify},
       {"demo", "beautify the paper's test objects and compare with the expected counts", cmd_demo},
+      {"audit", "check the paper's Table 1 (the order of the passes) on random defective models", cmd_audit},
       {"convert", "convert between .json, .step/.stp and .brep", cmd_convert},
       {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
   };
@@ -25,6 +27,13 @@ namespace {
 void usage(std::ostream& os) {
   os << "usage: kintsugi VERB [options]   (kintsugi VERB --help for each verb)\n\nverbs:\n";
   for (const Command& c : commands()) os << "  " << c.name << std::string(12 - std::string(c.name).size(), ' ') << c.summary << "\n";
+  os << "\nrepair passes, in the order beautify runs them (the paper's Table 1):\n";
+  for (kintsugi::ProblemType t : kintsugi::kAllProblemTypes) {
+    const kintsugi::Pass* p = kintsugi::find_pass(t);
+    os << "  " << (kintsugi::problem_order(t) < 10 ? " " : "") << kintsugi::problem_order(t) << " "
+       << kintsugi::problem_name(t) << std::string(21 - std::string(kintsugi::problem_name(t)).size(), ' ')
+       << (p ? p->summary : "(no pass yet: found and reported, not repaired)") << "\n";
+  }
   os << "\nExit codes: 0 success, 1 invalid model (check), 2 bad input or usage.\n";
 }
 }  // namespace

@@ -1,4 +1,8 @@
-// The pipeline of Figure 13: passes in the paper's order, each a queue of problems.
+// The pipeline of Figure 13: the registered passes in the paper's order, each a queue of
+// problems (section 3.3). One whole-body detection at the start; after that, only the
+// neighbourhood of what repairs touched is detected again: before each pass, the queued
+// problems anchored there are replaced by what detect_near finds there, and after each
+// repair its own neighbourhood feeds the running pass's queue.
 #include "repair/beautify.h"
 
 #include "invariants/geometry_check.h"
@@ -6,36 +10,39 @@
 #include "kernel/transaction.h"
 #include "repair/beautify_detail.h"
 #include "repair/detect.h"
+#include "repair/pass.h"
 
 #include <chrono>
 #include <deque>
+#include <set>
 #include <sstream>
 
 namespace kintsugi {
 
+const char* outcome_name(Outcome o) {
+  switch (o) {
+    case Outcome::repaired: return "repaired";
+    case Outcome::resolved_earlier: return "resolved by an earlier repair";
+    case Outcome::refused:
+    case Outcome::no_pass: return "not repaired";
+  }
+  return "?";
+}
+
 int BeautifyReport::repaired() const {
   int n = 0;
-  for (const auto& p : problems) n += p.action == "repaired";
+  for (const auto& p : problems) n += p.repaired();
   return n;
 }
-int BeautifyReport::not_repaired() const { return int(problems.size()) - repaired(); }
+int BeautifyReport::not_repaired() const {
+  int n = 0;
+  for (const auto& p : problems) n += p.left();
+  return n;
+}
 
-bool pass_implemented(ProblemType t) { return problem_order(t) >= problem_order(ProblemType::short_edge_chain); }
+bool pass_implemented(ProblemType t) { return find_pass(t) != nullptr; }
 
 namespace {
-
-using RepairFn = std::string (*)(detail::RepairCall&);
-
-RepairFn repair_for(ProblemType t) {
-  switch (t) {
-    case ProblemType::short_edge_chain: return detail::repair_short_edge_chain;
-    case ProblemType::same_geometry_faces: return detail::repair_same_geometry;
-    case ProblemType::small_face: return detail::repair_small_face;
-    case ProblemType::mergeable_edges: return detail::repair_mergeable_edges;
-    case ProblemType::short_edge: return detail::repair_short_edge;
-    default: return nullptr;
-  }
-}
 
 std::string fmt(double d) {
   std::ostringstream os;
@@ -44,16 +51,25 @@ std::string fmt(double d) {
   return os.str();
 }
 
+std::size_t slot(ProblemType t) { return std::size_t(problem_order(t) - 1); }
+
+bool all_alive(const Body& b, const Problem& p) {
+  for (const Element& e : p.elements)
+    if (!std::visit([&](auto h) { return b.alive(h); }, e)) return false;
+  return true;
+}
+
 // One repair inside a transaction: committed only when the operators, the new geometry,
 // the local geometry check and (optionally) check_topology all succeed.
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
-                    RepairFn fn, detail::Touched& touched) {
-  RepairEntry entry{p.type, p.elements, "not repaired", {}, "", 0.0};
+                    const Pass& pass, Touched& touched) {
+  RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   Transaction tx(b);
   std::string why;
   try {
-    detail::RepairCall call{b, p, tol, touched};
-    why = fn(call);
+    RepairContext call{b, p, tol, touched};
+    why = pass.repair(call);
+    if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
   } catch (const std::exception& e) {
     why = std::string("geometry could not be computed: ") + e.what();
   }
@@ -70,75 +86,132 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   if (why.empty() && options.veto) why = options.veto(b, p.type);
   if (!why.empty()) {
     tx.rollback();
+    touched.clear();
     entry.reason = why;
     entry.deviation = 0.0;
     return entry;
   }
   entry.operators = b.journal().op_names(tx.first_entry());
   tx.commit();
-  entry.action = "repaired";
+  entry.outcome = Outcome::repaired;
   return entry;
 }
 
-void run_queue(Body& b, const geo::Tolerances& tol, ProblemType t, std::vector<Problem> queue_in,
-               BeautifyReport& report, const BeautifyOptions& options) {
-  RepairFn fn = repair_for(t);
-  if (!fn) {
-    for (const Problem& p : queue_in)
-      report.problems.push_back({p.type, p.elements, "not repaired", {}, "pass not implemented yet", 0.0});
-    return;
+// The problems waiting for each pass (by type), kept current by local re-detection.
+struct Queues {
+  std::array<std::vector<Problem>, 11> by_type;
+
+  // Replaces the problems anchored near `region` in the queues of types from `from` on
+  // (earlier types are done: what is anchored there now goes to `left`... kept in the
+  // same table, read at the end) by what detection finds there now.
+  void refresh(const Body& b, const geo::Tolerances& tol, const Touched& region) {
+    if (region.empty()) return;
+    Neighbourhood n = neighbourhood(b, region);
+    for (auto& q : by_type) {
+      std::vector<Problem> keep;
+      for (Problem& p : q)
+        if (!n.anchors(b, p)) keep.push_back(std::move(p));
+      q = std::move(keep);
+    }
+    for (Problem& p : detect_near(b, tol, n).problems) by_type[slot(p.type)].push_back(std::move(p));
+  }
+};
+
+// Runs one pass over `queue`; returns what its committed repairs touched. Problems it
+// does not repair stay in `left_of_type`.
+Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, ProblemType t, std::vector<Problem> queue_in,
+                  BeautifyReport& report, const BeautifyOptions& options, std::vector<Problem>& left_of_type) {
+  Touched region;
+  if (!pass) {
+    for (Problem& p : queue_in) {
+      report.problems.push_back({p, Outcome::no_pass, {}, "no pass for this type yet", 0.0});
+      left_of_type.push_back(std::move(p));
+    }
+    return region;
   }
   std::deque<Problem> queue(queue_in.begin(), queue_in.end());
-  std::set<std::vector<std::string>> queued;
+  std::set<std::vector<Element>> queued;
   for (const Problem& p : queue) queued.insert(p.elements);
   while (!queue.empty()) {
     Problem p = std::move(queue.front());
     queue.pop_front();
-    detail::Touched touched;
-    RepairEntry entry = attempt(b, p, tol, options, fn, touched);
-    const bool ok = entry.action == "repaired";
+    if (!all_alive(b, p)) {
+      // An earlier repair removed some of its elements; whatever is left of it there was
+      // detected again around that repair and queued.
+      report.problems.push_back({p, Outcome::resolved_earlier, {}, "", 0.0});
+      continue;
+    }
+    Touched touched;
+    RepairEntry entry = attempt(b, p, tol, options, *pass, touched);
+    const bool ok = entry.repaired();
     report.problems.push_back(std::move(entry));
-    if (!ok) continue;
-    for (Problem& q : detail::follow_ups(b, tol, t, touched))
+    if (!ok) {
+      left_of_type.push_back(std::move(p));
+      continue;
+    }
+    region.merge(touched);
+    // What the repair left or made of this pass's own type (Table 1's diagonal).
+    for (Problem& q : detect_near_for(*pass, b, tol, touched))
       if (queued.insert(q.elements).second) queue.push_back(std::move(q));
+    // A problem refused earlier in this pass may have been changed by this repair.
+    Neighbourhood n = neighbourhood(b, touched);
+    std::vector<Problem> still;
+    for (Problem& q : left_of_type)
+      if (!n.anchors(b, q)) still.push_back(std::move(q));
+    left_of_type = std::move(still);
   }
+  return region;
 }
 
 }  // namespace
 
 void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport& report, const BeautifyOptions& options) {
-  Detection d = detect(b, tol);
+  const Pass* pass = find_pass(t);
   std::vector<Problem> mine;
-  for (const Problem& p : d.problems)
-    if (p.type == t) mine.push_back(p);
-  run_queue(b, tol, t, std::move(mine), report, options);
+  if (pass) {
+    mine = detect_for(*pass, b, tol);
+  } else {
+    for (Problem& p : detect(b, tol).problems)
+      if (p.type == t) mine.push_back(std::move(p));
+  }
+  std::vector<Problem> left;
+  run_queue(b, tol, pass, t, std::move(mine), report, options, left);
 }
 
 BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options) {
   using clock = std::chrono::steady_clock;
   BeautifyReport r;
   r.counts_before = b.counts();
-  // One detection serves passes 1..7 (1..6 change nothing yet); passes 8..11 detect
-  // afresh, since the passes before them changed the body: a fixed number of linear scans.
   auto t0 = clock::now();
-  Detection first = detect(b, tol);
+  Queues q;
+  {
+    Detection first = detect(b, tol);
+    r.problems_before = first.counts;
+    for (Problem& p : first.problems) q.by_type[slot(p.type)].push_back(std::move(p));
+  }
   const double first_detect = std::chrono::duration<double>(clock::now() - t0).count();
-  r.problems_before = first.counts;
+  Touched since_refresh;  // what repairs touched since the queues were last brought up to date
   for (ProblemType t : kAllProblemTypes) {
     auto start = clock::now();
-    if (problem_order(t) <= problem_order(ProblemType::short_edge_chain)) {
-      std::vector<Problem> mine;
-      for (const Problem& p : first.problems)
-        if (p.type == t) mine.push_back(p);
-      run_queue(b, tol, t, std::move(mine), r, options);
-    } else {
-      run_pass(b, tol, t, r, options);
-    }
-    r.seconds[std::size_t(problem_order(t) - 1)] = std::chrono::duration<double>(clock::now() - start).count();
+    q.refresh(b, tol, since_refresh);
+    since_refresh.clear();
+    std::vector<Problem> queue = std::move(q.by_type[slot(t)]);
+    q.by_type[slot(t)].clear();
+    std::vector<Problem> left;
+    since_refresh = run_queue(b, tol, find_pass(t), t, std::move(queue), r, options, left);
+    q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
+    r.seconds[slot(t)] = std::chrono::duration<double>(clock::now() - start).count();
   }
-  r.seconds[0] += first_detect;  // the shared detection is charged to the first pass
+  r.seconds[0] += first_detect;  // the first detection is charged to the first pass
+  // What the last pass touched, and anything a pass created of a type fixed before it
+  // (a break of Table 1's order), is found here too.
+  q.refresh(b, tol, since_refresh);
+  for (auto& by : q.by_type)
+    for (Problem& p : by) {
+      r.problems_after[slot(p.type)]++;
+      r.left.push_back(std::move(p));
+    }
   r.counts_after = b.counts();
-  r.problems_after = detect(b, tol).counts;
   GeometryReport g = check_geometry(b, tol.precision);
   r.max_deviation = g.max_deviation;
   r.max_elements = g.max_elements;

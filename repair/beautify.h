@@ -9,14 +9,15 @@
 // the length tolerance, check_topology), it is rolled back: the body is exactly as it
 // was before that repair, and the problem is reported "not repaired" with the reason.
 //
-// Passes 1-6 (gaps, pinched faces, small face chains, slivers) are not implemented yet:
-// their problems are reported "not repaired" with reason "pass not implemented yet".
+// The passes come from the registry (repair/pass.h); a type with no pass yet has its
+// problems reported "not repaired" with the reason "no pass for this type yet".
 // spec/beautify.md says what each repair does.
 #pragma once
 
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
-#include "repair/problem.h"
+#include "problems/problem.h"
+#include "repair/touched.h"
 
 #include <array>
 #include <functional>
@@ -25,25 +26,40 @@
 
 namespace kintsugi {
 
+// What became of one problem.
+enum class Outcome {
+  repaired,          // its repair was committed
+  resolved_earlier,  // an earlier repair removed it before its turn (its elements are gone)
+  refused,           // its repair could not be made and was rolled back; `reason` says why
+  no_pass,           // no pass for its type is built yet
+};
+// "repaired", "resolved by an earlier repair", "not repaired" (refused and no_pass).
+const char* outcome_name(Outcome o);
+
 struct RepairEntry {
-  ProblemType type;
-  std::vector<std::string> elements;   // as detected (printed handles)
-  std::string action;                  // "repaired" or "not repaired"
+  Problem problem;                     // as it was queued
+  Outcome outcome = Outcome::refused;
   std::vector<std::string> operators;  // journal op names of the committed repair
   std::string reason;                  // why not repaired (empty when repaired)
   double deviation = 0.0;              // largest geometric deviation left around the repair
+
+  bool repaired() const { return outcome == Outcome::repaired; }
+  bool left() const { return outcome == Outcome::refused || outcome == Outcome::no_pass; }
 };
 
 struct BeautifyReport {
   std::vector<RepairEntry> problems;  // in the order they were handled
+  // The problems the output still has: what the pipeline left or created, found by its
+  // local detections (a test checks that detect() on the output finds exactly these).
+  std::vector<Problem> left;
   Counts counts_before, counts_after;
-  std::array<int, 11> problems_before{}, problems_after{};  // detect() counts by type
+  std::array<int, 11> problems_before{}, problems_after{};  // by type: detect() before, `left` after
   double max_deviation = 0.0;         // check_geometry over the result
   std::vector<std::string> max_elements;
   std::array<double, 11> seconds{};   // per pass, indexed by problem_order(type) - 1
 
   int repaired() const;
-  int not_repaired() const;
+  int not_repaired() const;  // entries refused or without a pass
 };
 
 struct BeautifyOptions {
@@ -53,6 +69,10 @@ struct BeautifyOptions {
   // Test hook: called after a repair's operators and geometry, before commit; a
   // non-empty answer rolls the repair back with that reason.
   std::function<std::string(const Body&, ProblemType)> veto;
+  // Test hook: runs right after a pass's repair succeeded, before the checks, and may
+  // change the body further (through operators) and what was touched. The audit's tests
+  // use it to break a pass on purpose and see the audit catch it.
+  std::function<void(Body&, ProblemType, Touched&)> after_repair;
 };
 
 // The whole pipeline, passes 1..11.
@@ -63,7 +83,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
 void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport& report,
               const BeautifyOptions& options = {});
 
-// Whether the pass for `t` is implemented (7..11 are).
+// Whether a pass for `t` is registered.
 bool pass_implemented(ProblemType t);
 
 }  // namespace kintsugi

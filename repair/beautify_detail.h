@@ -4,6 +4,8 @@
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
 #include "repair/beautify.h"
+#include "repair/pass.h"
+#include "repair/touched.h"
 
 #include <optional>
 #include <set>
@@ -12,41 +14,9 @@
 
 namespace kintsugi::detail {
 
-// Elements a repair changed: the local geometry check looks at these and what is
-// around them.
-struct Touched {
-  std::set<VertexH> vertices;
-  std::set<EdgeH> edges;
-  std::set<FaceH> faces;
-};
-
-// What a repair function gets: the body (inside an open Transaction), the problem, the
-// tolerances; it fills `touched` and returns "" on success or the reason it cannot.
-struct RepairCall {
-  Body& b;
-  const Problem& problem;
-  const geo::Tolerances& tol;
-  Touched& touched;
-};
-
-std::string repair_short_edge_chain(RepairCall& c);
-std::string repair_same_geometry(RepairCall& c);
-std::string repair_small_face(RepairCall& c);
-std::string repair_mergeable_edges(RepairCall& c);
-std::string repair_short_edge(RepairCall& c);
-
-// Problems of the same type that a committed repair may have created, to be appended
-// to the pass's queue (end of paper 3.3).
-std::vector<Problem> follow_ups(const Body& b, const geo::Tolerances& tol, ProblemType t, const Touched& touched);
-std::vector<Problem> same_geometry_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched);
-std::vector<Problem> short_edge_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched);
+using RepairCall = RepairContext;
 
 // ---- shared helpers (beautify_geometry.cpp) -------------------------------------
-// "e7" -> EdgeH(7); invalid handle when the text is not of that kind.
-VertexH parse_vertex(const std::string& s);
-EdgeH parse_edge(const std::string& s);
-FaceH parse_face(const std::string& s);
-
 // The curve for edge e from the faces beside it: the line through its vertices when
 // both are planes, else the branch of their intersection through its vertices, oriented
 // like the edge's present curve. nullopt with *why when none is within tolerance.

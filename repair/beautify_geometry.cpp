@@ -17,17 +17,6 @@ namespace kintsugi::detail {
 
 namespace {
 
-std::optional<std::uint32_t> parse_index(const std::string& s, char prefix) {
-  if (s.size() < 2 || s[0] != prefix) return std::nullopt;
-  std::uint64_t v = 0;
-  for (std::size_t i = 1; i < s.size(); ++i) {
-    if (s[i] < '0' || s[i] > '9') return std::nullopt;
-    v = v * 10 + std::uint64_t(s[i] - '0');
-    if (v >= 0xffffffffu) return std::nullopt;
-  }
-  return std::uint32_t(v);
-}
-
 std::string fmt(double d) {
   std::ostringstream os;
   os.precision(3);
@@ -59,18 +48,6 @@ geo::Curve reversed(const geo::Curve& c) {
 
 }  // namespace
 
-VertexH parse_vertex(const std::string& s) {
-  auto i = parse_index(s, 'v');
-  return i ? VertexH(*i) : VertexH{};
-}
-EdgeH parse_edge(const std::string& s) {
-  auto i = parse_index(s, 'e');
-  return i ? EdgeH(*i) : EdgeH{};
-}
-FaceH parse_face(const std::string& s) {
-  auto i = parse_index(s, 'f');
-  return i ? FaceH(*i) : FaceH{};
-}
 
 std::vector<FaceH> faces_around(const Body& b, VertexH v) {
   std::vector<FaceH> out;
@@ -278,14 +255,6 @@ double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& t
     }
   }
   return worst;
-}
-
-std::vector<Problem> follow_ups(const Body& b, const geo::Tolerances& tol, ProblemType t, const Touched& touched) {
-  // Table 1's diagonal: only these two passes can make more of their own kind (a merged
-  // face may match another neighbour; a moved vertex may shorten an edge at it).
-  if (t == ProblemType::same_geometry_faces) return same_geometry_follow_ups(b, tol, touched);
-  if (t == ProblemType::short_edge) return short_edge_follow_ups(b, tol, touched);
-  return {};
 }
 
 }  // namespace kintsugi::detail

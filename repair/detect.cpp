@@ -7,21 +7,61 @@
 
 namespace kintsugi {
 
-Detection detect(const Body& b, const geo::Tolerances& tol) {
-  detail::DetectContext c{b, tol, 1e-3 * tol.length, {}, {}};
-  c.faces.resize(b.face_slots());
-  c.edge_length.assign(b.edge_slots(), 0.0);
-  for (EdgeH e : b.edges()) c.edge_length[e.idx()] = edge_length(b, e);
-  for (FaceH f : b.faces()) {
-    std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, c.chordal);
-    detail::FaceInfo& fi = c.faces[f.idx()];
-    if (!m) continue;  // unmeasurable faces are neither small nor slivers
-    fi.measured = true;
-    fi.area = m->area;
-    fi.bbox_diagonal = m->bounds.diagonal();
-    fi.small = m->area < tol.length * tol.length;
-    fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < tol.length;
+namespace detail {
+
+DetectContext::DetectContext(const Body& body, const geo::Tolerances& t, Scope s, bool w)
+    : b(body), tol(t), chordal(1e-3 * t.length), scope(std::move(s)), whole(w) {
+  if (whole) {
+    face_dense_.resize(b.face_slots());
+    face_done_.assign(b.face_slots(), 0);
+    length_dense_.assign(b.edge_slots(), -1.0);
   }
+}
+
+namespace {
+FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double chordal) {
+  FaceInfo fi;
+  std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, chordal);
+  if (!m) return fi;  // unmeasurable faces are neither small nor slivers
+  fi.measured = true;
+  fi.area = m->area;
+  fi.bbox_diagonal = m->bounds.diagonal();
+  fi.small = m->area < tol.length * tol.length;
+  fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < tol.length;
+  return fi;
+}
+}  // namespace
+
+const FaceInfo& DetectContext::face(FaceH f) const {
+  if (whole) {
+    FaceInfo& fi = face_dense_[f.idx()];
+    if (!face_done_[f.idx()]) {
+      fi = measure_face(b, f, tol, chordal);
+      face_done_[f.idx()] = 1;
+    }
+    return fi;
+  }
+  auto it = face_sparse_.find(f.idx());
+  if (it == face_sparse_.end()) it = face_sparse_.emplace(f.idx(), measure_face(b, f, tol, chordal)).first;
+  return it->second;
+}
+
+double DetectContext::edge_length(EdgeH e) const {
+  if (whole) {
+    double& l = length_dense_[e.idx()];
+    if (l < 0) l = kintsugi::edge_length(b, e);
+    return l;
+  }
+  auto it = length_sparse_.find(e.idx());
+  if (it == length_sparse_.end()) it = length_sparse_.emplace(e.idx(), kintsugi::edge_length(b, e)).first;
+  return it->second;
+}
+
+}  // namespace detail
+
+namespace {
+
+Detection run(detail::DetectContext& c) {
   Detection d;
   detail::detect_gaps(c, d.problems);
   detail::detect_pinched(c, d.problems);
@@ -33,6 +73,86 @@ Detection detect(const Body& b, const geo::Tolerances& tol) {
                    [](const Problem& a, const Problem& b) { return problem_order(a.type) < problem_order(b.type); });
   for (const Problem& p : d.problems) d.counts[std::size_t(problem_order(p.type) - 1)]++;
   return d;
+}
+
+template <class H>
+std::vector<H> sorted(const std::unordered_set<H>& s) {
+  std::vector<H> v(s.begin(), s.end());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+}  // namespace
+
+Detection detect(const Body& b, const geo::Tolerances& tol) {
+  detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
+  detail::DetectContext c(b, tol, std::move(s), true);
+  return run(c);
+}
+
+Neighbourhood neighbourhood(const Body& b, const Touched& t) {
+  Neighbourhood n;
+  std::unordered_set<FaceH> core;
+  auto add_faces_of_edge = [&](EdgeH e) {
+    for (unsigned s = 0; s < 2; ++s) {
+      FaceH f = b.face(halfedge_of(e, s));
+      if (f.valid()) core.insert(f);
+    }
+  };
+  for (FaceH f : t.faces)
+    if (b.alive(f)) core.insert(f);
+  for (EdgeH e : t.edges)
+    if (b.alive(e)) add_faces_of_edge(e);
+  for (VertexH v : t.vertices)
+    if (b.alive(v))
+      for (HalfedgeH h : b.outgoing(v)) add_faces_of_edge(edge_of(h));
+  n.faces = core;
+  for (FaceH f : core)
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        FaceH g = b.face(twin(h));
+        if (g.valid()) n.faces.insert(g);
+      }
+  for (FaceH f : n.faces)
+    for (LoopH l : b.loops_of(f)) {
+      if (b.is_lone(l)) n.vertices.insert(b.lone_vertex(l));
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        n.edges.insert(edge_of(h));
+        n.vertices.insert(b.origin(h));
+        if (b.is_border(twin(h))) n.borders.insert(b.loop(twin(h)));
+      }
+    }
+  return n;
+}
+
+bool Neighbourhood::anchors(const Body& b, const Problem& p) const {
+  for (const Element& e : p.elements) {
+    const bool dead = std::visit([&](auto h) { return !b.alive(h); }, e);
+    if (dead) return true;
+  }
+  switch (p.type) {
+    case ProblemType::face_gap:
+    case ProblemType::edge_gap:
+    case ProblemType::multi_face_gap:
+      return borders.count(p.first<LoopH>()) != 0;
+    case ProblemType::short_edge_chain:
+    case ProblemType::short_edge:
+      for (EdgeH e : p.all<EdgeH>())
+        if (edges.count(e)) return true;
+      return false;
+    case ProblemType::mergeable_edges:
+      return vertices.count(p.first<VertexH>()) != 0;
+    default:  // pinched, small, sliver, chains of small faces, same geometry: their faces
+      for (FaceH f : p.all<FaceH>())
+        if (faces.count(f)) return true;
+      return false;
+  }
+}
+
+Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
+  detail::Scope s{sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
+  detail::DetectContext c(b, tol, std::move(s), false);
+  return run(c);
 }
 
 }  // namespace kintsugi

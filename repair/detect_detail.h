@@ -1,11 +1,16 @@
-// Internal to detection: per-face measures computed once and shared by the detectors.
+// Internal to detection: the scope a detection covers (the whole body, or the
+// neighbourhood of what repairs touched) and per-element measures computed once, on first
+// use, and shared by the detectors.
 #pragma once
 
 #include "geometry/area.h"
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
-#include "repair/problem.h"
+#include "problems/problem.h"
 
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace kintsugi::detail {
@@ -18,12 +23,59 @@ struct FaceInfo {
   bool sliver = false;  // area / bbox diagonal < tol, and not small
 };
 
-struct DetectContext {
+// The elements detection starts from. Each detector starts only from elements of its
+// anchor kind (spec/problems.md, "Detecting near a repair"): faces for face problems and
+// pinching, edges for short edges and same geometry, vertices for mergeable edges,
+// border cycles for gaps. Walks (chains) may leave the scope.
+struct Scope {
+  std::vector<FaceH> faces;
+  std::vector<EdgeH> edges;
+  std::vector<VertexH> vertices;
+  std::vector<LoopH> borders;
+};
+
+// Marks by slot: a dense array for a whole-body detection, a hash set for a local one
+// (which must cost what the neighbourhood costs, not what the body does).
+class Marks {
+ public:
+  Marks(std::size_t slots, bool dense) : dense_(dense) {
+    if (dense) bits_.assign(slots, 0);
+  }
+  bool test(std::uint32_t i) const { return dense_ ? bits_[i] != 0 : set_.count(i) != 0; }
+  void set(std::uint32_t i) {
+    if (dense_)
+      bits_[i] = 1;
+    else
+      set_.insert(i);
+  }
+
+ private:
+  bool dense_;
+  std::vector<std::uint8_t> bits_;
+  std::unordered_set<std::uint32_t> set_;
+};
+
+class DetectContext {
+ public:
+  DetectContext(const Body& b, const geo::Tolerances& tol, Scope scope, bool whole);
+
   const Body& b;
   geo::Tolerances tol;
-  double chordal;                  // for sampling curved boundaries
-  std::vector<FaceInfo> faces;     // by face slot
-  std::vector<double> edge_length; // by edge slot
+  double chordal;  // for sampling curved boundaries
+  Scope scope;
+  bool whole;  // the scope is the whole body
+
+  const FaceInfo& face(FaceH f) const;     // measured on first use
+  double edge_length(EdgeH e) const;       // measured on first use
+  Marks marks_faces() const { return Marks(b.face_slots(), whole); }
+  Marks marks_edges() const { return Marks(b.edge_slots(), whole); }
+
+ private:
+  mutable std::vector<FaceInfo> face_dense_;
+  mutable std::vector<std::uint8_t> face_done_;
+  mutable std::vector<double> length_dense_;
+  mutable std::unordered_map<std::uint32_t, FaceInfo> face_sparse_;
+  mutable std::unordered_map<std::uint32_t, double> length_sparse_;
 };
 
 void detect_gaps(DetectContext& c, std::vector<Problem>& out);

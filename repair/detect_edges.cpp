@@ -37,11 +37,11 @@ void detect_short_edges(DetectContext& c, std::vector<Problem>& out) {
   auto covered = [&](EdgeH e) {
     for (unsigned s = 0; s < 2; ++s) {
       FaceH f = b.face(halfedge_of(e, s));
-      if (!f.valid() || c.faces[f.idx()].small || c.faces[f.idx()].sliver) return true;
+      if (!f.valid() || c.face(f).small || c.face(f).sliver) return true;
     }
     return false;
   };
-  auto is_short = [&](EdgeH e) { return c.edge_length[e.idx()] < c.tol.length && !covered(e); };
+  auto is_short = [&](EdgeH e) { return c.edge_length(e) < c.tol.length && !covered(e); };
   // Links between short edges through two-edge vertices.
   auto neighbours = [&](EdgeH e) {
     std::vector<std::pair<EdgeH, VertexH>> out_n;
@@ -54,33 +54,33 @@ void detect_short_edges(DetectContext& c, std::vector<Problem>& out) {
     }
     return out_n;
   };
-  std::vector<std::uint8_t> seen(b.edge_slots(), 0);
-  for (EdgeH e : b.edges()) {
-    if (!is_short(e) || seen[e.idx()]) continue;
+  Marks seen = c.marks_edges();
+  for (EdgeH e : c.scope.edges) {
+    if (!is_short(e) || seen.test(e.idx())) continue;
     // Collect the component: it is a path or a ring, as every link vertex has two edges.
     std::vector<EdgeH> comp{e};
-    seen[e.idx()] = 1;
+    seen.set(e.idx());
     for (std::size_t i = 0; i < comp.size(); ++i)
       for (auto [n, v] : neighbours(comp[i]))
-        if (!seen[n.idx()]) {
-          seen[n.idx()] = 1;
+        if (!seen.test(n.idx())) {
+          seen.set(n.idx());
           comp.push_back(n);
         }
     double total = 0;
-    for (EdgeH x : comp) total += c.edge_length[x.idx()];
+    for (EdgeH x : comp) total += c.edge_length(x);
     Problem p;
     p.type = comp.size() >= 2 ? ProblemType::short_edge_chain : ProblemType::short_edge;
     std::sort(comp.begin(), comp.end());
-    for (EdgeH x : comp) p.elements.push_back(x.str());
+    for (EdgeH x : comp) p.elements.push_back(x);
     p.measure = total;
-    p.measure_name = "length";
+    p.measure_kind = Measure::length;
     out.push_back(std::move(p));
   }
 }
 
 void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
-  auto is_short = [&](EdgeH e) { return c.edge_length[e.idx()] < c.tol.length; };
+  auto is_short = [&](EdgeH e) { return c.edge_length(e) < c.tol.length; };
   // A short edge with a short neighbour across a two-edge vertex.
   auto in_chain = [&](EdgeH e) {
     if (!is_short(e)) return false;
@@ -93,7 +93,7 @@ void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
     }
     return false;
   };
-  for (VertexH v : b.vertices()) {
+  for (VertexH v : c.scope.vertices) {
     HalfedgeH a, d;
     if (!two_edges(b, v, &a, &d)) continue;
     // A gap's boundary is not a pair of faces: its vertices are the gap's, not mergeable.
@@ -108,9 +108,9 @@ void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
     if (in_chain(edge_of(a)) || in_chain(edge_of(d))) continue;
     Problem p;
     p.type = ProblemType::mergeable_edges;
-    p.elements = {v.str(), edge_of(a).str(), edge_of(d).str()};
-    p.measure = c.edge_length[edge_of(a).idx()] + c.edge_length[edge_of(d).idx()];
-    p.measure_name = "length";
+    p.elements = {v, edge_of(a), edge_of(d)};
+    p.measure = c.edge_length(edge_of(a)) + c.edge_length(edge_of(d));
+    p.measure_kind = Measure::length;
     out.push_back(std::move(p));
   }
 }

@@ -10,43 +10,47 @@
 #include <cmath>
 #include <functional>
 #include <set>
+#include <unordered_map>
 #include <variant>
 
 namespace kintsugi::detail {
 
 void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
-  // Small faces and the small faces across their edges.
-  std::vector<std::vector<FaceH>> small_nbrs(b.face_slots());
-  for (FaceH f : b.faces()) {
-    if (!c.faces[f.idx()].small) continue;
+  // The small faces across a small face's edges.
+  auto small_nbrs = [&](FaceH f) {
     std::set<FaceH> ns;
     for (LoopH l : b.loops_of(f))
       for (HalfedgeH h : b.loop_halfedges(l)) {
         FaceH g = b.face(twin(h));
-        if (g.valid() && g != f && c.faces[g.idx()].small) ns.insert(g);
+        if (g.valid() && g != f && c.face(g).small) ns.insert(g);
       }
-    small_nbrs[f.idx()].assign(ns.begin(), ns.end());
-  }
+    return std::vector<FaceH>(ns.begin(), ns.end());
+  };
   // A chain: connected small faces none of which has more than two small neighbours. A
   // face with more is a branch point of a network of small faces (paper 7): it joins no
   // chain and is reported on its own.
-  auto chainable = [&](FaceH f) { return small_nbrs[f.idx()].size() <= 2; };
-  std::vector<std::uint8_t> seen(b.face_slots(), 0);
-  for (FaceH f : b.faces()) {
-    const FaceInfo& fi = c.faces[f.idx()];
+  auto chainable = [&](FaceH f) { return small_nbrs(f).size() <= 2; };
+  Marks seen = c.marks_faces();
+  for (FaceH f : c.scope.faces) {
+    const FaceInfo& fi = c.face(f);
     if (fi.sliver) {
-      out.push_back({ProblemType::sliver_face, {f.str()}, fi.area / fi.bbox_diagonal, "width", ""});
+      Problem p;
+      p.type = ProblemType::sliver_face;
+      p.elements = {f};
+      p.measure = fi.area / fi.bbox_diagonal;
+      p.measure_kind = Measure::width;
+      out.push_back(std::move(p));
       continue;
     }
-    if (!fi.small || seen[f.idx()]) continue;
+    if (!fi.small || seen.test(f.idx())) continue;
     std::vector<FaceH> comp{f};
-    seen[f.idx()] = 1;
+    seen.set(f.idx());
     if (chainable(f)) {
       for (std::size_t i = 0; i < comp.size(); ++i)
-        for (FaceH g : small_nbrs[comp[i].idx()])
-          if (!seen[g.idx()] && chainable(g)) {
-            seen[g.idx()] = 1;
+        for (FaceH g : small_nbrs(comp[i]))
+          if (!seen.test(g.idx()) && chainable(g)) {
+            seen.set(g.idx());
             comp.push_back(g);
           }
     }
@@ -55,11 +59,11 @@ void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
     std::sort(comp.begin(), comp.end());
     double area = 0;
     for (FaceH g : comp) {
-      p.elements.push_back(g.str());
-      area += c.faces[g.idx()].area;
+      p.elements.push_back(g);
+      area += c.face(g).area;
     }
     p.measure = area;
-    p.measure_name = "area";
+    p.measure_kind = Measure::area;
     out.push_back(std::move(p));
   }
 }
@@ -94,7 +98,7 @@ double distance(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b
 struct ClosePair {
   double dist;
   HalfedgeH a, b;
-  const char* where;  // necking / spiking / bossing
+  PinchLocation where;
 };
 
 bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
@@ -136,8 +140,8 @@ std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vect
 void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
   const double t = c.tol.length;
-  for (FaceH f : b.faces()) {
-    const FaceInfo& fi = c.faces[f.idx()];
+  for (FaceH f : c.scope.faces) {
+    const FaceInfo& fi = c.face(f);
     if (!fi.measured || fi.small || fi.sliver) continue;
     // Every half-edge of the face, loop by loop, with its polyline and bounding box.
     struct Side {
@@ -151,7 +155,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
     // Edges along a gap go when the gap is closed (passes 1-3, before pinching): they
     // are not pinched, and a stretch of them joins its neighbours as if it had no length.
     auto gap_side = [&](HalfedgeH h) { return b.is_border(twin(h)); };
-    auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length[edge_of(h).idx()]; };
+    auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length(edge_of(h)); };
     for (LoopH l : b.loops_of(f)) {
       std::vector<HalfedgeH> hs = b.loop_halfedges(l);
       prefix.emplace_back(1, 0.0);
@@ -166,7 +170,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       }
     }
     std::vector<ClosePair> pairs;
-    auto consider = [&](double d, HalfedgeH x, HalfedgeH y, const char* where) {
+    auto consider = [&](double d, HalfedgeH x, HalfedgeH y, PinchLocation where) {
       if (d < t) pairs.push_back({d, x, y, where});
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
@@ -179,7 +183,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         // An inner loop close to the outer loop (or to another ring); loops touching at a
         // vertex are not compared.
         if (share_vertex(b, A.h, B.h)) continue;
-        consider(distance(A.poly, B.poly), A.h, B.h, "bossing");
+        consider(distance(A.poly, B.poly), A.h, B.h, PinchLocation::bossing);
         continue;
       }
       const std::vector<double>& pre = prefix[A.loop];
@@ -204,7 +208,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         if (cut_b[x]) pb = trim(pb, t, x == 0);
       }
       bool joined = cut_a[0] || cut_a[1];
-      consider(distance(pa, pb), A.h, B.h, joined ? "spiking" : "necking");
+      consider(distance(pa, pb), A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.
@@ -213,11 +217,14 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
           pairs[*std::min_element(occ.begin(), occ.end(), [&](std::size_t i, std::size_t j) { return pairs[i].dist < pairs[j].dist; })];
       bool straight = occ.size() == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
                       std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
-      out.push_back({ProblemType::pinched_face,
-                     {f.str(), edge_of(best.a).str(), edge_of(best.b).str()},
-                     best.dist,
-                     "distance",
-                     std::string(best.where) + (straight ? "/straight" : "/complex")});
+      Problem p;
+      p.type = ProblemType::pinched_face;
+      p.elements = {f, edge_of(best.a), edge_of(best.b)};
+      p.measure = best.dist;
+      p.measure_kind = Measure::distance;
+      p.subcase.location = best.where;
+      p.subcase.configuration = straight ? PinchConfiguration::straight : PinchConfiguration::complex;
+      out.push_back(std::move(p));
     }
   }
 }
@@ -226,19 +233,18 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
   std::set<std::pair<FaceH, FaceH>> done;
   // Each face's boundary samples, made once however many neighbours it is compared with.
-  std::vector<std::vector<geo::Vec3>> cache(b.face_slots());
-  std::vector<std::uint8_t> cached(b.face_slots(), 0);
+  // Keyed by face: a local detection must not pay for the whole body.
+  std::unordered_map<FaceH, std::vector<geo::Vec3>> cache, coarse_cache;
   auto samples = [&](FaceH f) -> const std::vector<geo::Vec3>& {
-    if (!cached[f.idx()]) {
-      for (const auto& loop : face_boundary(b, f, c.chordal * 100))
-        cache[f.idx()].insert(cache[f.idx()].end(), loop.begin(), loop.end());
-      cached[f.idx()] = 1;
+    auto it = cache.find(f);
+    if (it == cache.end()) {
+      it = cache.emplace(f, std::vector<geo::Vec3>{}).first;
+      for (const auto& loop : face_boundary(b, f, c.chordal * 100)) it->second.insert(it->second.end(), loop.begin(), loop.end());
     }
-    return cache[f.idx()];
+    return it->second;
   };
-  std::vector<std::vector<geo::Vec3>> coarse_cache(b.face_slots());
   auto coarse = [&](FaceH f) -> const std::vector<geo::Vec3>& {
-    std::vector<geo::Vec3>& out = coarse_cache[f.idx()];
+    std::vector<geo::Vec3>& out = coarse_cache[f];
     if (out.empty()) {
       const std::vector<geo::Vec3>& all = samples(f);
       const std::size_t step = std::max<std::size_t>(1, all.size() / 64);
@@ -246,13 +252,13 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     }
     return out;
   };
-  for (EdgeH e : b.edges()) {
+  for (EdgeH e : c.scope.edges) {
     FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
     if (!f1.valid() || !f2.valid() || f1 == f2) continue;
     if (b.surface(f1).index() != b.surface(f2).index() || std::holds_alternative<std::monostate>(b.surface(f1))) continue;
     // Small faces and slivers are removed by their own, earlier repairs (paper 3.2): a
     // nearly flat chain of small faces is a chain, not also a same-geometry pair.
-    const FaceInfo &i1 = c.faces[f1.idx()], &i2 = c.faces[f2.idx()];
+    const FaceInfo &i1 = c.face(f1), &i2 = c.face(f2);
     if (i1.small || i1.sliver || i2.small || i2.sliver) continue;
     auto key = std::minmax(f1, f2);
     if (!done.insert(key).second) continue;
@@ -262,8 +268,14 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     // this, every neighbour of such a face paid for all its samples: quadratic.
     if (geo::surface_deviation(b.surface(f1), b.surface(f2), coarse(f1), coarse(f2)) > c.tol.length) continue;
     double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2));
-    if (dev <= c.tol.length)
-      out.push_back({ProblemType::same_geometry_faces, {key.first.str(), key.second.str()}, dev, "distance", ""});
+    if (dev <= c.tol.length) {
+      Problem p;
+      p.type = ProblemType::same_geometry_faces;
+      p.elements = {key.first, key.second};
+      p.measure = dev;
+      p.measure_kind = Measure::distance;
+      out.push_back(std::move(p));
+    }
   }
 }
 

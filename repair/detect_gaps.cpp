@@ -37,7 +37,7 @@ std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vect
 
 void detect_gaps(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
-  for (LoopH l : b.border_cycles()) {
+  for (LoopH l : c.scope.borders) {
     for (const auto& cycle : simple_cycles(b, b.loop_halfedges(l))) {
       std::set<FaceH> faces;
       geo::Box box;
@@ -51,11 +51,11 @@ void detect_gaps(DetectContext& c, std::vector<Problem>& out) {
       p.type = faces.size() == 1 ? ProblemType::face_gap
              : faces.size() == 2 ? ProblemType::edge_gap
                                  : ProblemType::multi_face_gap;
-      p.elements.push_back(l.str());
-      for (FaceH f : faces) p.elements.push_back(f.str());
+      p.elements.push_back(l);
+      for (FaceH f : faces) p.elements.push_back(f);
       p.measure = box.diagonal();
-      p.measure_name = "diameter";
-      if (cycle.size() != b.loop_halfedges(l).size()) p.subcase = "shares a vertex with another gap";
+      p.measure_kind = Measure::diameter;
+      p.subcase.shares_vertex = cycle.size() != b.loop_halfedges(l).size();
       out.push_back(std::move(p));
     }
   }

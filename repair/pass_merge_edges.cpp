@@ -7,11 +7,12 @@
 
 namespace kintsugi::detail {
 
-std::string repair_mergeable_edges(RepairCall& c) {
+namespace {
+
+std::string repair_mergeable_edges(RepairContext& c) {
   Body& b = c.b;
-  if (c.problem.elements.empty()) return "no vertex named";
-  VertexH v = parse_vertex(c.problem.elements[0]);
-  if (!b.alive(v)) return "no longer present: " + c.problem.elements[0] + " was removed by an earlier repair";
+  VertexH v = c.problem.first<VertexH>();
+  if (!b.alive(v)) return "no vertex named";
   auto outs = b.outgoing(v);
   if (outs.size() != 2) return v.str() + " no longer lies on exactly two edges";
   if (edge_of(outs[0]) == edge_of(outs[1])) return v.str() + " is the only vertex of a closed edge: kept";
@@ -24,4 +25,9 @@ std::string repair_mergeable_edges(RepairCall& c) {
   return refit_joined_edge(b, keep, same_curve, c.tol);
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(merge_edges) = {kintsugi::ProblemType::mergeable_edges, "mergeable edges",
+                              "a vertex on two edges between the same two faces is removed and the edges joined",
+                              kintsugi::detail::repair_mergeable_edges};

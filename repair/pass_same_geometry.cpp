@@ -33,10 +33,11 @@ std::vector<EdgeH> common_edges(const Body& b, FaceH f, FaceH g) {
 
 }  // namespace
 
-std::string repair_same_geometry(RepairCall& c) {
+std::string repair_same_geometry(RepairContext& c) {
   Body& b = c.b;
-  if (c.problem.elements.size() < 2) return "two faces needed";
-  FaceH f = parse_face(c.problem.elements[0]), g = parse_face(c.problem.elements[1]);
+  auto faces = c.problem.all<FaceH>();
+  if (faces.size() != 2) return "two faces needed";
+  FaceH f = faces[0], g = faces[1];
   if (!b.alive(f) || !b.alive(g)) return "no longer present: a face was removed by an earlier repair";
   if (f == g) return "one face";
   if (b.surface(f).index() != b.surface(g).index()) return "the surfaces are of different types";
@@ -120,27 +121,8 @@ std::string repair_same_geometry(RepairCall& c) {
   return place_vertices(b, guesses, c.tol, c.tol.length, c.touched, alike);
 }
 
-std::vector<Problem> same_geometry_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched) {
-  std::vector<Problem> out;
-  for (FaceH f : touched.faces) {
-    if (!b.alive(f)) continue;
-    std::set<FaceH> nbrs;
-    for (LoopH l : b.loops_of(f))
-      for (HalfedgeH h : b.loop_halfedges(l)) {
-        FaceH g = b.face(twin(h));
-        if (g.valid() && g != f) nbrs.insert(g);
-      }
-    auto pf = samples(b, f, tol);
-    for (FaceH g : nbrs) {
-      if (b.surface(f).index() != b.surface(g).index()) continue;
-      double dev = geo::surface_deviation(b.surface(f), b.surface(g), pf, samples(b, g, tol));
-      if (dev <= tol.length) {
-        auto key = std::minmax(f, g);
-        out.push_back({ProblemType::same_geometry_faces, {key.first.str(), key.second.str()}, dev, "distance", ""});
-      }
-    }
-  }
-  return out;
-}
-
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(same_geometry) = {kintsugi::ProblemType::same_geometry_faces, "adjacent faces with the same geometry",
+                                "the edges between the faces are removed and one surface fitted to both",
+                                kintsugi::detail::repair_same_geometry};

@@ -8,11 +8,12 @@
 
 namespace kintsugi::detail {
 
-std::string repair_short_edge(RepairCall& c) {
+namespace {
+
+std::string repair_short_edge(RepairContext& c) {
   Body& b = c.b;
-  if (c.problem.elements.empty()) return "no edge named";
-  EdgeH e = parse_edge(c.problem.elements[0]);
-  if (!b.alive(e)) return "no longer present: " + c.problem.elements[0] + " was removed by an earlier repair";
+  EdgeH e = c.problem.first<EdgeH>();
+  if (!b.alive(e)) return "no edge named";
   if (!(edge_length(b, e) < c.tol.length)) return e.str() + " is no longer short";
   HalfedgeH h = halfedge_of(e, 0);
   if (b.origin(h) == b.target(h)) return e.str() + " is a closed edge: no vertex to collapse it to";
@@ -26,21 +27,9 @@ std::string repair_short_edge(RepairCall& c) {
   return place_vertices(b, {{keep, mid}}, c.tol, 2 * c.tol.length, c.touched);
 }
 
-std::vector<Problem> short_edge_follow_ups(const Body& b, const geo::Tolerances& tol, const Touched& touched) {
-  std::vector<Problem> out;
-  for (VertexH v : touched.vertices) {
-    if (!b.alive(v)) continue;
-    for (HalfedgeH h : b.outgoing(v)) {
-      EdgeH e = edge_of(h);
-      double len = edge_length(b, e);
-      if (!(len < tol.length)) continue;
-      bool face_small = false;  // an edge of a small face goes with that face, not here
-      for (HalfedgeH s : {h, twin(h)})
-        if (!b.face(s).valid() || face_area(b, b.face(s), tol) < tol.length * tol.length) face_small = true;
-      if (!face_small) out.push_back({ProblemType::short_edge, {e.str()}, len, "length", ""});
-    }
-  }
-  return out;
-}
-
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(short_edge) = {kintsugi::ProblemType::short_edge, "short edges",
+                             "the edge collapses to one vertex where the faces around it meet",
+                             kintsugi::detail::repair_short_edge};

@@ -10,12 +10,13 @@
 
 namespace kintsugi::detail {
 
-std::string repair_short_edge_chain(RepairCall& c) {
+namespace {
+
+std::string repair_short_edge_chain(RepairContext& c) {
   Body& b = c.b;
   std::set<EdgeH> chain;
-  for (const auto& s : c.problem.elements) {
-    EdgeH e = parse_edge(s);
-    if (!b.alive(e)) return "no longer present: " + s + " was removed by an earlier repair";
+  for (EdgeH e : c.problem.all<EdgeH>()) {
+    if (!b.alive(e)) return "no longer present: " + e.str() + " was removed by an earlier repair";
     chain.insert(e);
   }
   if (chain.size() < 2) return "a chain needs two edges";
@@ -47,4 +48,9 @@ std::string repair_short_edge_chain(RepairCall& c) {
   return refit_joined_edge(b, keep, one_curve, c.tol);
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(short_edge_chain) = {kintsugi::ProblemType::short_edge_chain, "short-edge chains",
+                                   "the chain becomes one edge between its end vertices",
+                                   kintsugi::detail::repair_short_edge_chain};

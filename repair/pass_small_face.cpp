@@ -12,11 +12,12 @@
 
 namespace kintsugi::detail {
 
-std::string repair_small_face(RepairCall& c) {
+namespace {
+
+std::string repair_small_face(RepairContext& c) {
   Body& b = c.b;
-  if (c.problem.elements.empty()) return "no face named";
-  FaceH f = parse_face(c.problem.elements[0]);
-  if (!b.alive(f)) return "no longer present: " + c.problem.elements[0] + " was removed by an earlier repair";
+  FaceH f = c.problem.first<FaceH>();
+  if (!b.alive(f)) return "no face named";
   if (!b.rings_of(f).empty()) return f.str() + " has inner loops";
   LoopH l = b.outer_loop(f);
   if (b.is_lone(l)) return f.str() + " has no edges";
@@ -56,4 +57,9 @@ std::string repair_small_face(RepairCall& c) {
   return place_vertices(b, {{keep, centroid}}, c.tol, 2 * c.tol.length, c.touched);
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(small_face) = {kintsugi::ProblemType::small_face, "small faces",
+                             "the face is replaced by one vertex where the faces around it meet",
+                             kintsugi::detail::repair_small_face};

@@ -15,7 +15,7 @@
 #pragma once
 
 #include "kernel/body.h"
-#include "repair/problem_type.h"
+#include "problems/problem_type.h"
 
 #include <nlohmann/json.hpp>
 

@@ -51,8 +51,8 @@ std::string describe(const Detection& d) {
   std::string s;
   for (const Problem& p : d.problems) {
     s += std::string(problem_name(p.type)) + " [";
-    for (auto& e : p.elements) s += e + " ";
-    s += "] " + std::to_string(p.measure) + " " + p.subcase + "\n";
+    for (auto& e : element_names(p)) s += e + " ";
+    s += "] " + std::to_string(p.measure) + " " + subcase_name(p) + "\n";
   }
   return s;
 }
@@ -90,8 +90,9 @@ std::string unmatched(const std::vector<zoo::KnownDefect>& known, const Detectio
   // pinches can share their face.
   auto fits = [&](const zoo::KnownDefect& k, const Problem& p) {
     auto named = [&](const std::string& e) { return std::find(k.elements.begin(), k.elements.end(), e) != k.elements.end(); };
-    if (p.type != k.type || p.elements.empty() || !named(p.elements[0])) return false;
-    if (p.type == ProblemType::pinched_face) return p.elements.size() == 3 && (named(p.elements[1]) || named(p.elements[2]));
+    const std::vector<std::string> pe = element_names(p);
+    if (p.type != k.type || pe.empty() || !named(pe[0])) return false;
+    if (p.type == ProblemType::pinched_face) return pe.size() == 3 && (named(pe[1]) || named(pe[2]));
     return true;
   };
   std::vector<int> owner(d.problems.size(), -1);  // problem -> known defect
@@ -193,7 +194,7 @@ RC_GTEST_PROP(Detect, InjectedDefectIsFoundWhereItWasPut, ()) {
   bool found = false;
   for (const Problem& p : d.problems)
     if (p.type == type)
-      for (const auto& e : p.elements) found = found || named.count(e);
+      for (const auto& e : element_names(p)) found = found || named.count(e);
   if (!found) RC_FAIL(std::string("injected ") + problem_name(type) + " (" + inj->description + ") not reported:\n" + describe(d));
 }
 
@@ -215,7 +216,7 @@ RC_GTEST_PROP(Detect, ScalingModelAndToleranceChangesNothing, ()) {
   RC_ASSERT(da.problems.size() == db.problems.size());
   for (std::size_t i = 0; i < da.problems.size(); ++i) {
     RC_ASSERT(da.problems[i].elements == db.problems[i].elements);
-    double p = da.problems[i].measure_name == "area" ? k * k : k;
+    double p = da.problems[i].measure_kind == Measure::area ? k * k : k;
     RC_ASSERT(std::abs(db.problems[i].measure - p * da.problems[i].measure) <= 1e-6 * p * (1 + da.problems[i].measure));
   }
 }

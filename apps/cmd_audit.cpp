@@ -1,0 +1,156 @@
+// kintsugi audit: Table 1 checked by machine (audit/audit.h, docs/table1-audit.md).
+#include "apps/args.h"
+#include "apps/commands.h"
+#include "apps/model_files.h"
+#include "audit/audit.h"
+#include "io/native_json.h"
+#include "repair/pass.h"
+
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <unistd.h>
+
+namespace kintsugi::cli {
+
+namespace {
+const char* kHelp =
+    "usage: kintsugi audit [--trials N] [--seed S] [--pass P] [--json] [--save DIR] [--no-shrink]\n\n"
+    "Checks the paper's ordering claim (Table 1, spec/table1.json) on random defective\n"
+    "models from the zoo: every base solid, every defect kind, several defects at once,\n"
+    "random tolerances, rotations, translations and scales. For each registered pass, each\n"
+    "trial runs the passes before it, then the pass, and counts every problem present after\n"
+    "it that was not before it (same type and elements) in the cell (created type, pass).\n"
+    "A created problem of a type whose pass already ran is a counterexample to the order;\n"
+    "one the paper marks \"No\" below the diagonal is reported as a disagreement.\n"
+    "Counterexamples and disagreements are shrunk (fewest faces, fewest defects, no motion).\n\n"
+    "  --trials N    trials per pass (default 200)\n"
+    "  --seed S      the run's seed (default 1): the same seed gives the same table\n"
+    "  --pass P      audit one pass only (a problem type name, e.g. short_edge)\n"
+    "  --json        print the 121 cells, counterexamples, disagreements and witnesses as JSON\n"
+    "  --save DIR    write each finding as DIR/<kind>-<pass>-<created>.json (its recipe, the\n"
+    "                operation script that rebuilds the model) and .model.json (the native model)\n"
+    "  --no-shrink   keep findings as found\n\n"
+    "Progress goes to stderr. Exit: 0 no counterexample; 1 a counterexample to the order was\n"
+    "found; 2 bad usage.\n";
+
+std::string short_name(ProblemType t) {
+  static const char* names[] = {"fgap", "egap", "mgap", "pinch", "sfch", "sliv", "sech", "same", "smf", "merg", "sed"};
+  return names[problem_order(t) - 1];
+}
+
+bool save_finding(const std::string& dir, const std::string& kind, const audit::Finding& f, std::string* error) {
+  const std::string stem = dir + "/" + kind + "-" + problem_name(f.recipe.pass) + "-" + problem_name(f.created);
+  nlohmann::json j = f.recipe.to_json();
+  j["created"] = problem_name(f.created);
+  j["kind"] = kind;
+  if (!write_file_atomically(stem + ".json", j.dump(2) + "\n", error)) return false;
+  auto built = audit::build(f.recipe);
+  if (!built) return true;
+  nlohmann::json meta = {{"tolerance", built->tolerance}, {"source", "kintsugi audit " + kind}};
+  return write_native_file(stem + ".model.json", built->body, meta, "mm", error);
+}
+}  // namespace
+
+int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  Args args;
+  std::string error;
+  if (!args.parse(argv, {"--trials", "--seed", "--pass", "--save"}, {"--json", "--help", "--no-shrink"}, &error)) {
+    err << "kintsugi audit: " << error << "\n" << kHelp;
+    return kExitBadInput;
+  }
+  if (args.has("--help")) {
+    out << kHelp;
+    return kExitOk;
+  }
+  if (!args.positional().empty()) {
+    err << "kintsugi audit: unexpected argument " << args.positional()[0] << "\n" << kHelp;
+    return kExitBadInput;
+  }
+  audit::Options o;
+  auto trials = args.integer("--trials", 200, 1, 1000000000, &error);
+  auto seed = args.integer("--seed", 1, 0, (1LL << 62), &error);
+  if (!trials || !seed) {
+    err << "kintsugi audit: " << error << "\n";
+    return kExitBadInput;
+  }
+  o.trials = long(*trials);
+  o.seed = std::uint64_t(*seed);
+  o.shrink = !args.has("--no-shrink");
+  if (auto p = args.value("--pass")) {
+    auto t = problem_from_name(*p);
+    if (!t) {
+      err << "kintsugi audit: --pass " << *p << " is not a problem type (kintsugi --help lists them)\n";
+      return kExitBadInput;
+    }
+    if (!find_pass(*t)) {
+      err << "kintsugi audit: no pass for " << *p << " is built yet\n";
+      return kExitBadInput;
+    }
+    o.pass = t;
+  }
+  const bool tty = isatty(STDERR_FILENO);
+  long last = -1;
+  o.progress = [&](ProblemType pass, long done, long total) {
+    const long pct = total ? done * 100 / total : 100;
+    if (tty) {
+      err << "\raudit " << std::setw(20) << std::left << problem_name(pass) << std::right << " " << done << "/" << total
+          << std::flush;
+      if (done == total) err << "\n";
+    } else if (pct / 25 != last / 25 || done == total) {
+      err << "audit " << problem_name(pass) << " " << done << "/" << total << "\n";
+    }
+    last = done == total ? -1 : pct;
+  };
+  audit::Result r = audit::run(o);
+  if (auto dir = args.value("--save")) {
+    for (const auto& f : r.counterexamples)
+      if (!save_finding(*dir, "counterexample", f, &error)) err << "kintsugi audit: " << error << "\n";
+    for (const auto& f : r.disagreements)
+      if (!save_finding(*dir, "disagreement", f, &error)) err << "kintsugi audit: " << error << "\n";
+    for (const auto& f : r.witnesses)
+      if (!save_finding(*dir, "witness", f, &error)) err << "kintsugi audit: " << error << "\n";
+  }
+  if (args.has("--json")) {
+    nlohmann::json j = audit::to_json(r);
+    j["seed"] = o.seed;
+    j["trials_per_pass"] = o.trials;
+    out << j.dump(2) << "\n";
+  } else {
+    out << "Table 1 audit, seed " << o.seed << ", " << o.trials << " trials per pass, " << std::fixed
+        << std::setprecision(1) << r.seconds << std::defaultfloat << " s\n";
+    out << "cell: trials in which fixing the column created the row [paper's Yes/No]; "
+           "* counterexample to the order, ! disagreement with the paper\n";
+    out << std::setw(6) << "";
+    for (ProblemType col : kAllProblemTypes) out << std::setw(10) << short_name(col);
+    out << "\n";
+    for (ProblemType row : kAllProblemTypes) {
+      out << std::setw(6) << short_name(row);
+      for (ProblemType col : kAllProblemTypes) {
+        std::ostringstream cell;
+        const long n = r.cells[std::size_t(problem_order(row) - 1)][std::size_t(problem_order(col) - 1)];
+        const char* mark = n == 0 ? " " : audit::verdict(row, col) == audit::Verdict::counterexample ? "*"
+                                      : audit::verdict(row, col) == audit::Verdict::disagreement   ? "!"
+                                                                                                  : " ";
+        if (!find_pass(col))
+          cell << "-";
+        else
+          cell << n << mark << (audit::paper_says_yes(row, col) ? "Y" : "N");
+        out << std::setw(10) << cell.str();
+      }
+      out << "\n";
+    }
+    out << "trials  ";
+    for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.trials[std::size_t(problem_order(col) - 1)];
+    out << "\n(- : no pass for that type yet)\n";
+    for (const auto& f : r.counterexamples)
+      out << "COUNTEREXAMPLE: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created) << ": "
+          << f.recipe.to_json().dump() << "\n";
+    for (const auto& f : r.disagreements)
+      out << "disagreement with the paper: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created)
+          << ": " << f.recipe.to_json().dump() << "\n";
+  }
+  return r.counterexamples.empty() ? kExitOk : kExitInvalid;
+}
+
+}  // namespace kintsugi::cli

@@ -1,0 +1,176 @@
+#include "audit/audit.h"
+
+#include "geometry/tolerance.h"
+#include "invariants/element_geometry.h"
+#include "repair/beautify.h"
+#include "repair/detect.h"
+#include "repair/pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+
+namespace kintsugi::audit {
+
+namespace {
+
+std::size_t idx(ProblemType t) { return std::size_t(problem_order(t) - 1); }
+
+double size_of(const Body& b) { return model_size(b); }  // invariants/element_geometry.h
+
+}  // namespace
+
+bool paper_says_yes(ProblemType created, ProblemType pass) {
+  for (ProblemType t : may_create(pass))
+    if (t == created) return true;
+  return false;
+}
+
+Verdict verdict(ProblemType created, ProblemType pass) {
+  if (problem_order(created) <= problem_order(pass)) return Verdict::counterexample;
+  return paper_says_yes(created, pass) ? Verdict::allowed : Verdict::disagreement;
+}
+
+TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
+  TrialResult out;
+  std::optional<Built> built = build(r);
+  if (!built) return out;
+  out.ran = true;
+  out.description = built->description;
+  Body& b = built->body;
+  const geo::Tolerances tol = geo::Tolerances::for_model(built->tolerance, size_of(b));
+  BeautifyReport report;
+  // The state the pass sees in the pipeline: every registered pass before it has run.
+  for (const Pass* p : passes())
+    if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
+  const Detection before = detect(b, tol);
+  run_pass(b, tol, r.pass, report, options);
+  const Detection after = detect(b, tol);
+  std::set<std::pair<ProblemType, std::vector<Element>>> had;
+  for (const Problem& p : before.problems) had.insert({p.type, p.elements});
+  for (const Problem& p : after.problems)
+    if (!had.count({p.type, p.elements})) out.created.push_back(p);
+  return out;
+}
+
+Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still) {
+  bool progress = true;
+  while (progress) {
+    progress = false;
+    // Fewer defects (the first, of the pass's own type, stays).
+    for (std::size_t i = r.injections.size(); i-- > 1;) {
+      Recipe c = r;
+      c.injections.erase(c.injections.begin() + std::ptrdiff_t(i));
+      if (still(c)) {
+        r = c;
+        progress = true;
+      }
+    }
+    // A simpler base.
+    std::vector<std::string> bases = base_names();
+    std::stable_sort(bases.begin(), bases.end(),
+                     [](const std::string& a, const std::string& b) { return base_faces(a) < base_faces(b); });
+    const std::size_t mine = base_faces(r.base);
+    for (const std::string& base : bases) {
+      if (base_faces(base) >= mine) break;
+      Recipe c = r;
+      c.base = base;
+      if (still(c)) {
+        r = c;
+        progress = true;
+        break;
+      }
+    }
+    // No motion.
+    if (r.scale != 1.0 || r.translation != std::array<double, 3>{0, 0, 0} ||
+        r.rotation != std::array<double, 4>{1, 0, 0, 0}) {
+      Recipe c = r;
+      c.scale = 1.0;
+      c.translation = {0, 0, 0};
+      c.rotation = {1, 0, 0, 0};
+      if (still(c)) {
+        r = c;
+        progress = true;
+      }
+    }
+  }
+  return r;
+}
+
+Result run(const Options& o) {
+  const auto start = std::chrono::steady_clock::now();
+  Result res;
+  std::array<std::array<bool, 11>, 11> recorded{};
+  for (const Pass* pass : passes()) {
+    if (o.pass && *o.pass != pass->type) continue;
+    // One generator per pass, seeded from the run's seed and the pass: a pass's trials do
+    // not depend on which other passes are audited.
+    std::seed_seq seq{std::uint32_t(o.seed), std::uint32_t(o.seed >> 32), std::uint32_t(problem_order(pass->type))};
+    std::mt19937_64 rng(seq);
+    for (long i = 0; i < o.trials; ++i) {
+      if (o.progress) o.progress(pass->type, i, o.trials);
+      const Recipe r = random_recipe(pass->type, rng);
+      TrialResult t = run_trial(r, o.beautify);
+      if (!t.ran) continue;
+      res.trials[idx(pass->type)]++;
+      std::set<ProblemType> seen;
+      for (const Problem& p : t.created) {
+        if (!seen.insert(p.type).second) continue;
+        res.cells[idx(p.type)][idx(pass->type)]++;
+        bool& done = recorded[idx(p.type)][idx(pass->type)];
+        if (done) continue;
+        done = true;
+        const Verdict v = verdict(p.type, pass->type);
+        const ProblemType created = p.type;
+        auto creates = [created, &o](const Recipe& c) {
+          for (const Problem& q : run_trial(c, o.beautify).created)
+            if (q.type == created) return true;
+          return false;
+        };
+        Finding f{created, v == Verdict::allowed || !o.shrink ? r : shrink(r, creates), p};
+        if (v == Verdict::counterexample)
+          res.counterexamples.push_back(f);
+        else if (v == Verdict::disagreement)
+          res.disagreements.push_back(f);
+        else
+          res.witnesses.push_back(f);
+      }
+    }
+    if (o.progress) o.progress(pass->type, o.trials, o.trials);
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return res;
+}
+
+nlohmann::json to_json(const Result& r) {
+  nlohmann::json cells = nlohmann::json::array();
+  for (ProblemType col : kAllProblemTypes)
+    for (ProblemType row : kAllProblemTypes) {
+      const char* v = verdict(row, col) == Verdict::counterexample ? "counterexample"
+                      : verdict(row, col) == Verdict::disagreement ? "disagreement"
+                                                                   : "allowed";
+      cells.push_back({{"fixing", problem_name(col)},
+                       {"created", problem_name(row)},
+                       {"paper", paper_says_yes(row, col) ? "Yes" : "No"},
+                       {"count", r.cells[idx(row)][idx(col)]},
+                       {"trials", r.trials[idx(col)]},
+                       {"pass_registered", find_pass(col) != nullptr},
+                       {"if_found", v}});
+    }
+  auto findings = [](const std::vector<Finding>& fs) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const Finding& f : fs) {
+      nlohmann::json at = nlohmann::json::array();
+      for (const std::string& e : element_names(f.example)) at.push_back(e);
+      a.push_back({{"created", problem_name(f.created)}, {"recipe", f.recipe.to_json()}, {"example_elements", at}});
+    }
+    return a;
+  };
+  return {{"cells", cells},
+          {"counterexamples", findings(r.counterexamples)},
+          {"disagreements", findings(r.disagreements)},
+          {"witnesses", findings(r.witnesses)},
+          {"seconds", r.seconds}};
+}
+
+}  // namespace kintsugi::audit

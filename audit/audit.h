@@ -1,0 +1,71 @@
+// `kintsugi audit`: the paper's ordering claim (Table 1) checked by machine. For each
+// registered pass, random defective models are brought to the state that pass sees in
+// the pipeline (the passes before it run), the pass runs, and every problem present
+// after it that was not present before it — by identity: type and elements — counts in
+// the cell (row: its type, column: the pass). A problem of a type whose pass already ran
+// (above the diagonal, or on it) is a counterexample to the order; one the paper marks
+// "No" below the diagonal is a disagreement with the paper (harmless for the order).
+// docs/table1-audit.md has the documented run.
+#pragma once
+
+#include "audit/recipe.h"
+#include "problems/problem.h"
+#include "repair/beautify.h"
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace kintsugi::audit {
+
+// What one trial found.
+struct TrialResult {
+  bool ran = false;                 // false: no defect could be injected
+  std::vector<Problem> created;     // present after the pass, not before it
+  std::string description;          // the injected defects
+};
+TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
+
+enum class Verdict {
+  allowed,        // the paper says "Yes" and the cell is below the diagonal
+  disagreement,   // below the diagonal, the paper says "No"
+  counterexample, // on or above the diagonal: breaks the order
+};
+// Row `created`, column `pass`.
+Verdict verdict(ProblemType created, ProblemType pass);
+bool paper_says_yes(ProblemType created, ProblemType pass);
+
+struct Options {
+  std::uint64_t seed = 1;
+  long trials = 200;                       // per pass
+  std::optional<ProblemType> pass;         // one pass only
+  std::function<void(ProblemType pass, long done, long total)> progress;
+  bool shrink = true;
+  BeautifyOptions beautify;  // passed to every pass (tests break a pass through its hooks)
+};
+
+struct Finding {
+  ProblemType created;
+  Recipe recipe;  // shrunk
+  Problem example;
+};
+
+struct Result {
+  // cells[row][col]: trials in which fixing col created row (0-based by order).
+  std::array<std::array<long, 11>, 11> cells{};
+  std::array<long, 11> trials{};  // trials that ran, per pass
+  std::vector<Finding> counterexamples;  // one per cell, shrunk
+  std::vector<Finding> disagreements;    // one per cell, shrunk
+  std::vector<Finding> witnesses;        // one per "Yes" cell reached, not shrunk
+  double seconds = 0.0;
+};
+Result run(const Options& o);
+
+// Smallest recipe (fewest faces in the base, fewest defects, no motion) for which
+// `still` holds, starting from one for which it does.
+Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still);
+
+nlohmann::json to_json(const Result& r);
+
+}  // namespace kintsugi::audit

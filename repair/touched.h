@@ -1,0 +1,26 @@
+// The elements a repair changed (created, moved, re-shaped, or whose loops it edited).
+// The pipeline detects again only near these (the paper's queues, section 3.3), and the
+// local geometry check looks at them and what is around them.
+#pragma once
+
+#include "kernel/handles.h"
+
+#include <set>
+
+namespace kintsugi {
+
+struct Touched {
+  std::set<VertexH> vertices;
+  std::set<EdgeH> edges;
+  std::set<FaceH> faces;
+
+  bool empty() const { return vertices.empty() && edges.empty() && faces.empty(); }
+  void merge(const Touched& o) {
+    vertices.insert(o.vertices.begin(), o.vertices.end());
+    edges.insert(o.edges.begin(), o.edges.end());
+    faces.insert(o.faces.begin(), o.faces.end());
+  }
+  void clear() { *this = Touched{}; }
+};
+
+}  // namespace kintsugi

@@ -1,0 +1,143 @@
+// The Table 1 audit: recipes rebuild their models exactly; a pass broken on purpose is
+// caught and shrunk to a small model; every saved finding in tests/data/table1/ replays.
+#include "audit/audit.h"
+#include "geometry/curve.h"
+#include "io/native_json.h"
+#include "kernel/euler.h"
+#include "repair/pass.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace kintsugi::audit {
+namespace {
+
+TEST(AuditRecipe, JsonRoundTripAndDeterministicBuild) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 20; ++i) {
+    Recipe r = random_recipe(kAllProblemTypes[std::size_t(i) % 11], rng);
+    Recipe back = Recipe::from_json(nlohmann::json::parse(r.to_json().dump()));
+    EXPECT_EQ(back.to_json(), r.to_json());
+    auto a = build(r), b = build(back);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (!a) continue;
+    std::string why;
+    EXPECT_TRUE(a->body.equals(b->body, &why)) << why;
+    EXPECT_EQ(a->tolerance, b->tolerance);
+  }
+}
+
+TEST(AuditRecipe, BadRecipesAreRefusedByName) {
+  nlohmann::json j = Recipe{}.to_json();
+  j["pass"] = "no_such_pass";
+  EXPECT_THROW(Recipe::from_json(j), std::invalid_argument);
+  j = Recipe{}.to_json();
+  j.erase("base");
+  EXPECT_THROW(Recipe::from_json(j), std::invalid_argument);
+  Recipe r;
+  r.base = "dodecahedron";
+  r.injections = {{ProblemType::small_face, 1}};
+  EXPECT_THROW(build(r), std::invalid_argument);
+}
+
+// Pass 9 broken on purpose: after collapsing a small face it splits an edge at the new
+// vertex into two short pieces and the rest — a chain of short edges, type 7, whose pass
+// ran before pass 9. The audit must find it in a CI-sized run and shrink it.
+TEST(Audit, FindsAPassBrokenOnPurposeAndShrinksIt) {
+  Options o;
+  o.pass = ProblemType::small_face;
+  o.trials = 40;
+  o.seed = 3;
+  o.beautify.after_repair = [](Body& b, ProblemType t, Touched& touched) {
+    if (t != ProblemType::small_face) return;
+    for (VertexH v : touched.vertices) {
+      if (!b.alive(v)) continue;
+      HalfedgeH h = b.out(v);
+      const geo::Vec3 p = b.point(v), q = b.point(b.target(h));
+      const double len = (q - p).norm();
+      if (len <= 0) continue;
+      // Two pieces of 1e-4 of the edge each at v: shorter than any audit tolerance.
+      auto r1 = euler::semv(b, h, p + 1e-4 * (q - p));
+      if (!r1) return;
+      auto r2 = euler::semv(b, r1->next, p + 2e-4 * (q - p));
+      if (!r2) return;
+      touched.vertices.insert(r1->vertex);
+      touched.vertices.insert(r2->vertex);
+      touched.edges.insert(edge_of(h));
+      touched.edges.insert(r1->edge);
+      touched.edges.insert(r2->edge);
+      return;
+    }
+  };
+  Result r = run(o);
+  ASSERT_GT(r.trials[std::size_t(problem_order(ProblemType::small_face) - 1)], 0);
+  const Finding* found = nullptr;
+  for (const Finding& f : r.counterexamples)
+    if (f.created == ProblemType::short_edge_chain) found = &f;
+  ASSERT_NE(found, nullptr) << to_json(r).dump(1);
+  EXPECT_EQ(found->recipe.injections.size(), 1u) << found->recipe.to_json().dump();
+  EXPECT_LE(base_faces(found->recipe.base), 7u) << found->recipe.to_json().dump();
+  EXPECT_EQ(found->recipe.scale, 1.0);
+  // Without the sabotage the shrunk model is no counterexample.
+  for (const Problem& p : run_trial(found->recipe).created)
+    EXPECT_NE(p.type, ProblemType::short_edge_chain) << found->recipe.to_json().dump();
+}
+
+// The real passes: no counterexample to the order in a short run (CI runs more through
+// `kintsugi audit`).
+TEST(Audit, RegisteredPassesKeepTheOrder) {
+  Options o;
+  o.trials = 15;
+  o.seed = 11;
+  o.shrink = false;
+  Result r = run(o);
+  std::string bad;
+  for (const Finding& f : r.counterexamples)
+    bad += std::string(problem_name(f.recipe.pass)) + " created " + problem_name(f.created) + ": " +
+           f.recipe.to_json().dump() + "\n";
+  EXPECT_EQ(bad, "");
+  const nlohmann::json j = to_json(r);
+  EXPECT_EQ(j["cells"].size(), 121u);
+}
+
+// Every saved finding replays: a witness still shows its "Yes", a documented disagreement
+// still shows, a counterexample (a bug that was fixed) no longer does; the saved native
+// model is the one the recipe builds.
+TEST(Audit, SavedFindingsReplay) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(KINTSUGI_TEST_DATA_DIR) / "table1";
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name.find(".model.") != std::string::npos) continue;
+    std::ifstream in(entry.path());
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const Recipe r = Recipe::from_json(j);
+    const ProblemType created = *problem_from_name(j.at("created").get<std::string>());
+    const std::string kind = j.at("kind").get<std::string>();
+    if (!find_pass(r.pass)) continue;  // its pass is not in this build
+    ++n;
+    bool creates = false;
+    for (const Problem& p : run_trial(r).created) creates = creates || p.type == created;
+    if (kind == "counterexample")
+      EXPECT_FALSE(creates) << name << ": the counterexample is back";
+    else
+      EXPECT_TRUE(creates) << name << ": the " << kind << " no longer shows";
+    fs::path model = entry.path();
+    model.replace_extension(".model.json");
+    if (fs::exists(model)) {
+      std::string error;
+      auto read = read_native_file(model.string(), &error);
+      ASSERT_TRUE(read) << name << ": " << error;
+      std::string why;
+      EXPECT_TRUE(read->body.equals(build(r)->body, &why))
+          << name << ": " << why;
+    }
+  }
+  RecordProperty("replayed", n);
+}
+
+}  // namespace
+}  // namespace kintsugi::audit
