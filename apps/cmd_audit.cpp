@@ -23,7 +23,10 @@ const char* kHelp =
     "it that was not before it (same type and elements) in the cell (created type, pass).\n"
     "A created problem of a type whose pass already ran is a counterexample to the order;\n"
     "one the paper marks \"No\" below the diagonal is reported as a disagreement.\n"
-    "Counterexamples and disagreements are shrunk (fewest faces, fewest defects, no motion).\n\n"
+    "Counterexamples and disagreements are shrunk (fewest faces, fewest defects, no motion).\n"
+    "A trial where problems of a type earlier than the pass are still there when it runs\n"
+    "(no pass for them yet, or refused) is outside the paper's claim: it is counted as\n"
+    "skipped, not judged.\n\n"
     "  --trials N    trials per pass (default 200)\n"
     "  --seed S      the run's seed (default 1): the same seed gives the same table\n"
     "  --pass P      audit one pass only (a problem type name, e.g. short_edge)\n"
@@ -44,11 +47,11 @@ bool save_finding(const std::string& dir, const std::string& kind, const audit::
   nlohmann::json j = f.recipe.to_json();
   j["created"] = problem_name(f.created);
   j["kind"] = kind;
-  if (!write_file_atomically(stem + ".json", j.dump(2) + "\n", error)) return false;
+  if (!io::write_file_atomically(stem + ".json", j.dump(2) + "\n", error)) return false;
   auto built = audit::build(f.recipe);
   if (!built) return true;
   nlohmann::json meta = {{"tolerance", built->tolerance}, {"source", "kintsugi audit " + kind}};
-  return write_native_file(stem + ".model.json", built->body, meta, "mm", error);
+  return io::write_native_file(stem + ".model.json", built->body, meta, "mm", error);
 }
 }  // namespace
 
@@ -142,7 +145,10 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     }
     out << "trials  ";
     for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.trials[std::size_t(problem_order(col) - 1)];
-    out << "\n(- : no pass for that type yet)\n";
+    out << "\nskipped ";
+    for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.skipped[std::size_t(problem_order(col) - 1)];
+    out << "\n(- : no pass for that type yet; skipped: trials with problems of an earlier type left when the\n"
+           "pass ran — their pass is not built or refused them — which the paper's claim does not cover)\n";
     for (const auto& f : r.counterexamples)
       out << "COUNTEREXAMPLE: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created) << ": "
           << f.recipe.to_json().dump() << "\n";

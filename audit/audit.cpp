@@ -44,13 +44,44 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   for (const Pass* p : passes())
     if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
   const Detection before = detect(b, tol);
+  for (const Problem& p : before.problems)
+    if (problem_order(p.type) < problem_order(r.pass)) out.precondition = false;
   run_pass(b, tol, r.pass, report, options);
   const Detection after = detect(b, tol);
-  std::set<std::pair<ProblemType, std::vector<Element>>> had;
-  for (const Problem& p : before.problems) had.insert({p.type, p.elements});
   for (const Problem& p : after.problems)
-    if (!had.count({p.type, p.elements})) out.created.push_back(p);
+    if (!existed_before(p, before.problems)) out.created.push_back(p);
   return out;
+}
+
+namespace {
+bool is_gap(ProblemType t) {
+  return t == ProblemType::face_gap || t == ProblemType::edge_gap || t == ProblemType::multi_face_gap;
+}
+std::vector<Element> anchor(const Problem& p) {
+  std::vector<Element> out;
+  auto keep = [&](auto pred) {
+    for (const Element& e : p.elements)
+      if (pred(e)) out.push_back(e);
+  };
+  if (is_gap(p.type))
+    keep([](const Element& e) { return std::holds_alternative<LoopH>(e); });
+  else if (p.type == ProblemType::pinched_face)
+    keep([](const Element& e) { return std::holds_alternative<EdgeH>(e); });
+  else if (p.type == ProblemType::mergeable_edges)
+    keep([](const Element& e) { return std::holds_alternative<VertexH>(e); });
+  else
+    out = p.elements;
+  return out;
+}
+}  // namespace
+
+bool existed_before(const Problem& after, const std::vector<Problem>& before) {
+  const std::vector<Element> key = anchor(after);
+  for (const Problem& q : before) {
+    const bool same_kind = q.type == after.type || (is_gap(q.type) && is_gap(after.type));
+    if (same_kind && anchor(q) == key) return true;
+  }
+  return false;
 }
 
 Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still) {
@@ -112,6 +143,10 @@ Result run(const Options& o) {
       const Recipe r = random_recipe(pass->type, rng);
       TrialResult t = run_trial(r, o.beautify);
       if (!t.ran) continue;
+      if (!t.precondition) {
+        res.skipped[idx(pass->type)]++;
+        continue;
+      }
       res.trials[idx(pass->type)]++;
       std::set<ProblemType> seen;
       for (const Problem& p : t.created) {
@@ -123,7 +158,9 @@ Result run(const Options& o) {
         const Verdict v = verdict(p.type, pass->type);
         const ProblemType created = p.type;
         auto creates = [created, &o](const Recipe& c) {
-          for (const Problem& q : run_trial(c, o.beautify).created)
+          const TrialResult t = run_trial(c, o.beautify);
+          if (!t.precondition) return false;
+          for (const Problem& q : t.created)
             if (q.type == created) return true;
           return false;
         };
@@ -154,6 +191,7 @@ nlohmann::json to_json(const Result& r) {
                        {"paper", paper_says_yes(row, col) ? "Yes" : "No"},
                        {"count", r.cells[idx(row)][idx(col)]},
                        {"trials", r.trials[idx(col)]},
+                       {"skipped", r.skipped[idx(col)]},
                        {"pass_registered", find_pass(col) != nullptr},
                        {"if_found", v}});
     }

@@ -22,10 +22,20 @@ namespace kintsugi::audit {
 // What one trial found.
 struct TrialResult {
   bool ran = false;                 // false: no defect could be injected
+  // The paper's claim is about the pipeline, where every problem of an earlier type is
+  // gone when a pass runs. A trial where some are left (their pass is not built, or
+  // refused them) does not meet that precondition: it is counted apart, not judged.
+  bool precondition = true;
   std::vector<Problem> created;     // present after the pass, not before it
   std::string description;          // the injected defects
 };
 TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
+
+// Whether `after` existed before the pass, as the same problem: the same kind of problem
+// (gaps of any of the three types are one kind: a merge can turn an edge gap into a face
+// gap) at the same place — its anchor: the border cycle of a gap, the two edges of a
+// pinch, the vertex of a mergeable pair, the face(s) or edge(s) of the others.
+bool existed_before(const Problem& after, const std::vector<Problem>& before);
 
 enum class Verdict {
   allowed,        // the paper says "Yes" and the cell is below the diagonal
@@ -54,7 +64,8 @@ struct Finding {
 struct Result {
   // cells[row][col]: trials in which fixing col created row (0-based by order).
   std::array<std::array<long, 11>, 11> cells{};
-  std::array<long, 11> trials{};  // trials that ran, per pass
+  std::array<long, 11> trials{};  // trials that ran and met the precondition, per pass
+  std::array<long, 11> skipped{}; // trials that ran with earlier problems left, per pass
   std::vector<Finding> counterexamples;  // one per cell, shrunk
   std::vector<Finding> disagreements;    // one per cell, shrunk
   std::vector<Finding> witnesses;        // one per "Yes" cell reached, not shrunk

@@ -119,7 +119,7 @@ struct Queues {
 
 // Runs one pass over `queue`; returns what its committed repairs touched. Problems it
 // does not repair stay in `left_of_type`.
-Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, ProblemType t, std::vector<Problem> queue_in,
+Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::vector<Problem> queue_in,
                   BeautifyReport& report, const BeautifyOptions& options, std::vector<Problem>& left_of_type) {
   Touched region;
   if (!pass) {
@@ -175,7 +175,7 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
       if (p.type == t) mine.push_back(std::move(p));
   }
   std::vector<Problem> left;
-  run_queue(b, tol, pass, t, std::move(mine), report, options, left);
+  run_queue(b, tol, pass, std::move(mine), report, options, left);
 }
 
 BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options) {
@@ -198,7 +198,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
     std::vector<Problem> queue = std::move(q.by_type[slot(t)]);
     q.by_type[slot(t)].clear();
     std::vector<Problem> left;
-    since_refresh = run_queue(b, tol, find_pass(t), t, std::move(queue), r, options, left);
+    since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left);
     q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
     r.seconds[slot(t)] = std::chrono::duration<double>(clock::now() - start).count();
   }

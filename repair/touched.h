@@ -8,6 +8,9 @@
 #include <set>
 
 namespace kintsugi {
+// (An inline namespace: the kernel has its own per-operator `Touched` in namespace
+// kintsugi, in a private header; this keeps the two distinct for the linker.)
+inline namespace repair_touched {
 
 struct Touched {
   std::set<VertexH> vertices;
@@ -23,4 +26,5 @@ struct Touched {
   void clear() { *this = Touched{}; }
 };
 
+}  // namespace repair_touched
 }  // namespace kintsugi

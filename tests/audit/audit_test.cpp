@@ -129,7 +129,7 @@ TEST(Audit, SavedFindingsReplay) {
     model.replace_extension(".model.json");
     if (fs::exists(model)) {
       std::string error;
-      auto read = read_native_file(model.string(), &error);
+      auto read = io::read_native_file(model.string(), &error);
       ASSERT_TRUE(read) << name << ": " << error;
       std::string why;
       EXPECT_TRUE(read->body.equals(build(r)->body, &why))
