@@ -161,7 +161,7 @@ std::uint32_t EulerImpl::save_list(Body& b, std::vector<std::uint32_t> list) {
   return static_cast<std::uint32_t>(b.journal_.lists_.size() - 1);
 }
 
-std::optional<Error> EulerImpl::finish(Body& b, JournalEntry e, const Touched& t) {
+std::optional<Error> EulerImpl::finish(Body& b, JournalEntry e, const TouchedElements& t) {
   std::vector<Violation> bad = check_local(b, t);
   if (!bad.empty()) {
     undo(b, e);

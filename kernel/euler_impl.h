@@ -55,21 +55,21 @@ class EulerImpl {
     int x_side = 0;  // which half-edge of a new edge plays the role of x / a
   };
 
-  static MvfsResult raw_mvfs(Body& b, const geo::Vec3& p, const Reuse& r, Touched& t);
-  static void raw_kvfs(Body& b, FaceH f, Touched& t);
+  static MvfsResult raw_mvfs(Body& b, const geo::Vec3& p, const Reuse& r, TouchedElements& t);
+  static void raw_kvfs(Body& b, FaceH f, TouchedElements& t);
   static MevResult raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, LoopH lone,
-                           const geo::Vec3& p, const Reuse& r, Touched& t);
-  static void raw_kev(Body& b, HalfedgeH x, Touched& t);
-  static MefResult raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touched& t);
-  static void raw_kef(Body& b, HalfedgeH h, Touched& t);
-  static KemrResult raw_kemr(Body& b, HalfedgeH h, const Reuse& r, Touched& t);
-  static MekrResult raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, Touched& t);
-  static void raw_kfmrh(Body& b, FaceH keep, FaceH kill, Touched& t);
-  static MfkrhResult raw_mfkrh(Body& b, LoopH ring, const Reuse& r, Touched& t);
-  static KfmbResult raw_kfmb(Body& b, FaceH f, Touched& t);
-  static MfkbResult raw_mfkb(Body& b, LoopH l, const Reuse& r, Touched& t);
-  static SemvResult raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const Reuse& r, Touched& t);
-  static void raw_jekv(Body& b, HalfedgeH h, Touched& t);
+                           const geo::Vec3& p, const Reuse& r, TouchedElements& t);
+  static void raw_kev(Body& b, HalfedgeH x, TouchedElements& t);
+  static MefResult raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, TouchedElements& t);
+  static void raw_kef(Body& b, HalfedgeH h, TouchedElements& t);
+  static KemrResult raw_kemr(Body& b, HalfedgeH h, const Reuse& r, TouchedElements& t);
+  static MekrResult raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, TouchedElements& t);
+  static void raw_kfmrh(Body& b, FaceH keep, FaceH kill, TouchedElements& t);
+  static MfkrhResult raw_mfkrh(Body& b, LoopH ring, const Reuse& r, TouchedElements& t);
+  static KfmbResult raw_kfmb(Body& b, FaceH f, TouchedElements& t);
+  static MfkbResult raw_mfkb(Body& b, LoopH l, const Reuse& r, TouchedElements& t);
+  static SemvResult raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const Reuse& r, TouchedElements& t);
+  static void raw_jekv(Body& b, HalfedgeH h, TouchedElements& t);
 
   // ---- undo of each record (in the operator's file; set_* in undo.cpp) ---------------
   static void undo(Body& b, const MvfsRecord& r, const JournalEntry& e);
@@ -109,7 +109,7 @@ class EulerImpl {
   }
   // Records `e` (if journaling) after the local check passed; otherwise undoes it and
   // returns the postcondition error (a kernel bug: counted, see euler::postcondition_failures).
-  static std::optional<Error> finish(Body& b, JournalEntry e, const Touched& t);
+  static std::optional<Error> finish(Body& b, JournalEntry e, const TouchedElements& t);
 
   static ShellH shell_of_loop(const Body& b, LoopH l) { return b.shell(l); }
   static bool& journaling(Body& b) { return b.journaling_; }

@@ -114,7 +114,7 @@ void StructureWalk::face_outer(FaceH f) {
   if (!b_.alive(o) || b_.face(o) != f) add("face_loops", {f.str()}, "outer loop is not the face's");
 }
 
-std::vector<Violation> check_local(const Body& b, const Touched& t) {
+std::vector<Violation> check_local(const Body& b, const TouchedElements& t) {
   std::vector<Violation> out;
   StructureWalk walk(b, out);
   for (LoopH l : t.loops)

@@ -15,7 +15,7 @@
 namespace kintsugi {
 
 // What an operator touched: the local check looks at exactly these.
-struct Touched {
+struct TouchedElements {
   std::vector<LoopH> loops;
   std::vector<VertexH> vertices;
   std::vector<FaceH> faces;
@@ -23,7 +23,7 @@ struct Touched {
 
 // Everything wrong with the touched elements (dead ones are skipped: the operator
 // killed them). Empty when all holds.
-std::vector<Violation> check_local(const Body& b, const Touched& t);
+std::vector<Violation> check_local(const Body& b, const TouchedElements& t);
 
 // The bounded walks, appending what they find to `out`.
 class StructureWalk {

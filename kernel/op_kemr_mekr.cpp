@@ -22,7 +22,7 @@ std::optional<Error> euler::can_kemr(const Body& b, HalfedgeH x) {
   return std::nullopt;
 }
 
-KemrResult EulerImpl::raw_kemr(Body& b, HalfedgeH x, const Reuse& r, Touched& t) {
+KemrResult EulerImpl::raw_kemr(Body& b, HalfedgeH x, const Reuse& r, TouchedElements& t) {
   HalfedgeH y = twin(x);
   LoopH l = he(b, x).loop;
   FaceH f = lp(b, l).face;
@@ -66,7 +66,7 @@ Result<KemrResult> euler::kemr(Body& b, HalfedgeH x) {
   KemrRecord rec{x, LoopH{}, ny != x ? ny : HalfedgeH{}, nx != y ? nx : HalfedgeH{}, l};
   JournalEntry e{rec};
   e.saved = I::save(b, nullptr, &b.curve(edge_of(x)), nullptr, 1);
-  Touched t;
+  TouchedElements t;
   KemrResult r = I::raw_kemr(b, x, {}, t);
   std::get<KemrRecord>(e.record).ring = r.ring;
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -74,7 +74,7 @@ Result<KemrResult> euler::kemr(Body& b, HalfedgeH x) {
 }
 
 void EulerImpl::undo(Body& b, const KemrRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.edge = edge_of(r.x).idx();
   reuse.x_side = int(r.x.idx() & 1u);
@@ -99,7 +99,7 @@ std::optional<Error> euler::can_mekr(const Body& b, Corner c1, Corner c2) {
   return std::nullopt;
 }
 
-MekrResult EulerImpl::raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, Touched& t) {
+MekrResult EulerImpl::raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, TouchedElements& t) {
   LoopH l1 = c1.lone.valid() ? c1.lone : he(b, c1.he).loop;
   LoopH l2 = c2.lone.valid() ? c2.lone : he(b, c2.he).loop;
   FaceH f = lp(b, l1).face;
@@ -136,7 +136,7 @@ MekrResult EulerImpl::raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, To
 Result<MekrResult> euler::mekr(Body& b, Corner c1, Corner c2) {
   if (auto e = can_mekr(b, c1, c2)) return *e;
   LoopH ring = pre::corner_loop(b, c2);
-  Touched t;
+  TouchedElements t;
   MekrResult r = I::raw_mekr(b, c1, c2, {}, t);
   JournalEntry e{MekrRecord{r.edge, r.a, ring}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -144,7 +144,7 @@ Result<MekrResult> euler::mekr(Body& b, Corner c1, Corner c2) {
 }
 
 void EulerImpl::undo(Body& b, const MekrRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.loop = r.ring.idx();
   raw_kemr(b, r.a, reuse, t);

@@ -24,7 +24,7 @@ std::optional<Error> euler::can_kfmb(const Body& b, FaceH f) {
   return std::nullopt;
 }
 
-KfmbResult EulerImpl::raw_kfmb(Body& b, FaceH f, Touched& t) {
+KfmbResult EulerImpl::raw_kfmb(Body& b, FaceH f, TouchedElements& t) {
   LoopH l = fc(b, f).outer;
   kill(b, f);
   lp(b, l).face = FaceH{};
@@ -36,14 +36,14 @@ Result<KfmbResult> euler::kfmb(Body& b, FaceH f) {
   if (auto e = can_kfmb(b, f)) return *e;
   JournalEntry e{KfmbRecord{f, b.outer_loop(f)}};
   e.saved = I::save(b, nullptr, nullptr, &b.surface(f), b.same_sense(f));
-  Touched t;
+  TouchedElements t;
   KfmbResult r = I::raw_kfmb(b, f, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return r;
 }
 
 void EulerImpl::undo(Body& b, const KfmbRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.face = r.killed.idx();
   raw_mfkb(b, r.border, reuse, t);
@@ -58,7 +58,7 @@ std::optional<Error> euler::can_mfkb(const Body& b, LoopH l) {
   return std::nullopt;
 }
 
-MfkbResult EulerImpl::raw_mfkb(Body& b, LoopH l, const Reuse& r, Touched& t) {
+MfkbResult EulerImpl::raw_mfkb(Body& b, LoopH l, const Reuse& r, TouchedElements& t) {
   ShellH s = b.shell(l);
   FaceH nf = new_face(b, s, r.face);
   fc(b, nf).outer = l;
@@ -71,7 +71,7 @@ MfkbResult EulerImpl::raw_mfkb(Body& b, LoopH l, const Reuse& r, Touched& t) {
 
 Result<MfkbResult> euler::mfkb(Body& b, LoopH l) {
   if (auto e = can_mfkb(b, l)) return *e;
-  Touched t;
+  TouchedElements t;
   MfkbResult r = I::raw_mfkb(b, l, {}, t);
   JournalEntry e{MfkbRecord{r.face, l}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -79,7 +79,7 @@ Result<MfkbResult> euler::mfkb(Body& b, LoopH l) {
 }
 
 void EulerImpl::undo(Body& b, const MfkbRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_kfmb(b, r.face, t);
 }
 

@@ -24,7 +24,7 @@ std::optional<Error> euler::can_kfmrh(const Body& b, FaceH keep, FaceH kill) {
   return std::nullopt;
 }
 
-void EulerImpl::raw_kfmrh(Body& b, FaceH keep, FaceH kf, Touched& t) {
+void EulerImpl::raw_kfmrh(Body& b, FaceH keep, FaceH kf, TouchedElements& t) {
   LoopH l = fc(b, kf).outer;
   ShellH s = fc(b, kf).shell;
   add_ring(b, keep, l);
@@ -38,14 +38,14 @@ Result<Done> euler::kfmrh(Body& b, FaceH keep, FaceH kf) {
   if (auto e = can_kfmrh(b, keep, kf)) return *e;
   JournalEntry e{KfmrhRecord{keep, kf, b.outer_loop(kf)}};
   e.saved = I::save(b, nullptr, nullptr, &b.surface(kf), b.same_sense(kf));
-  Touched t;
+  TouchedElements t;
   I::raw_kfmrh(b, keep, kf, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};
 }
 
 void EulerImpl::undo(Body& b, const KfmrhRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.face = r.killed.idx();
   raw_mfkrh(b, r.ring, reuse, t);
@@ -102,7 +102,7 @@ std::optional<Error> euler::can_mfkrh(const Body& b, LoopH ring) {
   return std::nullopt;
 }
 
-MfkrhResult EulerImpl::raw_mfkrh(Body& b, LoopH ring, const Reuse& r, Touched& t) {
+MfkrhResult EulerImpl::raw_mfkrh(Body& b, LoopH ring, const Reuse& r, TouchedElements& t) {
   FaceH f = lp(b, ring).face;
   ShellH s = fc(b, f).shell;
   remove_ring(b, f, ring);
@@ -119,7 +119,7 @@ MfkrhResult EulerImpl::raw_mfkrh(Body& b, LoopH ring, const Reuse& r, Touched& t
 Result<MfkrhResult> euler::mfkrh(Body& b, LoopH ring) {
   if (auto e = can_mfkrh(b, ring)) return *e;
   FaceH f = b.face(ring);
-  Touched t;
+  TouchedElements t;
   MfkrhResult r = I::raw_mfkrh(b, ring, {}, t);
   JournalEntry e{MfkrhRecord{f, r.face, ring}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -127,7 +127,7 @@ Result<MfkrhResult> euler::mfkrh(Body& b, LoopH ring) {
 }
 
 void EulerImpl::undo(Body& b, const MfkrhRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_kfmrh(b, r.old_face, r.face, t);
 }
 

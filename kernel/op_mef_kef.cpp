@@ -20,7 +20,7 @@ std::optional<Error> euler::can_mef(const Body& b, Corner c1, Corner c2) {
   return std::nullopt;
 }
 
-MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touched& t) {
+MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, TouchedElements& t) {
   LoopH l = c1.lone.valid() ? c1.lone : he(b, c1.he).loop;
   ShellH s = b.shell(l);
   EdgeH e = new_edge(b, r.edge);
@@ -69,7 +69,7 @@ MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touc
 
 Result<MefResult> euler::mef(Body& b, Corner c1, Corner c2) {
   if (auto e = can_mef(b, c1, c2)) return *e;
-  Touched t;
+  TouchedElements t;
   MefResult r = I::raw_mef(b, c1, c2, {}, t);
   JournalEntry e{MefRecord{r.edge, r.a, r.face, r.loop}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -77,7 +77,7 @@ Result<MefResult> euler::mef(Body& b, Corner c1, Corner c2) {
 }
 
 void EulerImpl::undo(Body& b, const MefRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_kef(b, r.a, t);
 }
 
@@ -112,7 +112,7 @@ std::optional<Error> euler::can_kef(const Body& b, HalfedgeH h) {
   return std::nullopt;
 }
 
-void EulerImpl::raw_kef(Body& b, HalfedgeH h, Touched& t) {
+void EulerImpl::raw_kef(Body& b, HalfedgeH h, TouchedElements& t) {
   HalfedgeH tw = twin(h);
   LoopH lh = he(b, h).loop, lt = he(b, tw).loop;
   FaceH fh = lp(b, lh).face, ft = lp(b, lt).face;
@@ -179,14 +179,14 @@ Result<Done> euler::kef(Body& b, HalfedgeH h) {
     for (LoopH r : b.rings_of(ft)) rings.push_back(r.idx());
     if (!rings.empty()) e.extra = I::save_list(b, std::move(rings));
   }
-  Touched t;
+  TouchedElements t;
   I::raw_kef(b, h, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};
 }
 
 void EulerImpl::undo(Body& b, const KefRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.edge = edge_of(r.h).idx();
   reuse.x_side = int(r.h.idx() & 1u);

@@ -48,7 +48,7 @@ std::optional<Error> euler::can_mev_split(const Body& b, HalfedgeH h1, HalfedgeH
 }
 
 MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, LoopH lone,
-                             const geo::Vec3& p, const Reuse& r, Touched& t) {
+                             const geo::Vec3& p, const Reuse& r, TouchedElements& t) {
   VertexH w = new_vertex(b, p, r.vertex);
   EdgeH e = new_edge(b, r.edge);
   HalfedgeH x = halfedge_of(e, r.x_side), y = twin(x);
@@ -102,7 +102,7 @@ MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, Loo
 
 namespace {
 Result<MevResult> apply_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, LoopH lone, const geo::Vec3& p) {
-  Touched t;
+  TouchedElements t;
   MevResult r = I::raw_mev(b, k, h1, h2, lone, p, {}, t);
   JournalEntry e{MevRecord{r.vertex, r.edge, r.x}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -123,7 +123,7 @@ Result<MevResult> euler::mev_split(Body& b, HalfedgeH h1, HalfedgeH h2, const ge
 }
 
 void EulerImpl::undo(Body& b, const MevRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_kev(b, r.x, t);
 }
 
@@ -141,7 +141,7 @@ std::optional<Error> euler::can_kev(const Body& b, HalfedgeH x) {
   return std::nullopt;
 }
 
-void EulerImpl::raw_kev(Body& b, HalfedgeH x, Touched& t) {
+void EulerImpl::raw_kev(Body& b, HalfedgeH x, TouchedElements& t) {
   HalfedgeH y = twin(x);
   VertexH v = he(b, x).origin, w = he(b, y).origin;
   LoopH lx = he(b, x).loop, ly = he(b, y).loop;
@@ -188,14 +188,14 @@ Result<Done> euler::kev(Body& b, HalfedgeH x) {
   }
   JournalEntry e{rec};
   e.saved = I::save(b, &b.point(w), &b.curve(edge_of(x)), nullptr, 1);
-  Touched t;
+  TouchedElements t;
   I::raw_kev(b, x, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};
 }
 
 void EulerImpl::undo(Body& b, const KevRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.vertex = r.killed.idx();
   reuse.edge = edge_of(r.x).idx();

@@ -11,7 +11,7 @@ using pre::err;
 
 std::optional<Error> euler::can_mvfs(const Body&, const geo::Vec3&) { return std::nullopt; }
 
-MvfsResult EulerImpl::raw_mvfs(Body& b, const geo::Vec3& p, const Reuse& r, Touched& t) {
+MvfsResult EulerImpl::raw_mvfs(Body& b, const geo::Vec3& p, const Reuse& r, TouchedElements& t) {
   ShellH s = new_shell(b, r.shell);
   FaceH f = new_face(b, s, r.face);
   LoopH l = new_loop(b, f, r.loop);
@@ -26,7 +26,7 @@ MvfsResult EulerImpl::raw_mvfs(Body& b, const geo::Vec3& p, const Reuse& r, Touc
 
 Result<MvfsResult> euler::mvfs(Body& b, const geo::Vec3& p) {
   if (auto e = can_mvfs(b, p)) return *e;
-  Touched t;
+  TouchedElements t;
   MvfsResult r = I::raw_mvfs(b, p, {}, t);
   JournalEntry e{MvfsRecord{r.shell, r.face, r.loop, r.vertex}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -34,7 +34,7 @@ Result<MvfsResult> euler::mvfs(Body& b, const geo::Vec3& p) {
 }
 
 void EulerImpl::undo(Body& b, const MvfsRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_kvfs(b, r.face, t);
 }
 
@@ -50,7 +50,7 @@ std::optional<Error> euler::can_kvfs(const Body& b, FaceH f) {
   return std::nullopt;
 }
 
-void EulerImpl::raw_kvfs(Body& b, FaceH f, Touched&) {
+void EulerImpl::raw_kvfs(Body& b, FaceH f, TouchedElements&) {
   LoopH l = fc(b, f).outer;
   VertexH v = lp(b, l).lone;
   ShellH s = fc(b, f).shell;
@@ -66,14 +66,14 @@ Result<Done> euler::kvfs(Body& b, FaceH f) {
   VertexH v = b.lone_vertex(l);
   JournalEntry e{KvfsRecord{b.shell(f), f, l, v}};
   e.saved = I::save(b, &b.point(v), nullptr, &b.surface(f), b.same_sense(f));
-  Touched t;
+  TouchedElements t;
   I::raw_kvfs(b, f, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};
 }
 
 void EulerImpl::undo(Body& b, const KvfsRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.shell = r.shell.idx();
   reuse.face = r.face.idx();

@@ -13,7 +13,7 @@ std::optional<Error> euler::can_semv(const Body& b, HalfedgeH h, const geo::Vec3
   return pre::alive(b, h, "half-edge");
 }
 
-SemvResult EulerImpl::raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const Reuse& r, Touched& t) {
+SemvResult EulerImpl::raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const Reuse& r, TouchedElements& t) {
   HalfedgeH tw = twin(h);
   VertexH w = he(b, tw).origin;
   VertexH m = new_vertex(b, p, r.vertex);
@@ -51,7 +51,7 @@ SemvResult EulerImpl::raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const R
 
 Result<SemvResult> euler::semv(Body& b, HalfedgeH h, const geo::Vec3& p) {
   if (auto e = can_semv(b, h, p)) return *e;
-  Touched t;
+  TouchedElements t;
   I::Reuse r;
   r.x_side = -1;  // choose by the direction of h
   SemvResult res = I::raw_semv(b, h, p, r, t);
@@ -61,7 +61,7 @@ Result<SemvResult> euler::semv(Body& b, HalfedgeH h, const geo::Vec3& p) {
 }
 
 void EulerImpl::undo(Body& b, const SemvRecord& r, const JournalEntry&) {
-  Touched t;
+  TouchedElements t;
   raw_jekv(b, r.h, t);
 }
 
@@ -80,7 +80,7 @@ std::optional<Error> euler::can_jekv(const Body& b, HalfedgeH h) {
   return std::nullopt;
 }
 
-void EulerImpl::raw_jekv(Body& b, HalfedgeH h, Touched& t) {
+void EulerImpl::raw_jekv(Body& b, HalfedgeH h, TouchedElements& t) {
   HalfedgeH tw = twin(h), nh = he(b, h).next, nt = twin(nh);
   VertexH m = he(b, nh).origin, w = he(b, nt).origin;
   HalfedgeH n_nh = he(b, nh).next, p_nt = he(b, nt).prev;
@@ -109,14 +109,14 @@ Result<Done> euler::jekv(Body& b, HalfedgeH h) {
   VertexH m = b.target(h);
   JournalEntry e{JekvRecord{h, m, edge_of(nh), nh}};
   e.saved = I::save(b, &b.point(m), &b.curve(edge_of(nh)), nullptr, 1);
-  Touched t;
+  TouchedElements t;
   I::raw_jekv(b, h, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};
 }
 
 void EulerImpl::undo(Body& b, const JekvRecord& r, const JournalEntry& e) {
-  Touched t;
+  TouchedElements t;
   Reuse reuse;
   reuse.vertex = r.killed.idx();
   reuse.edge = r.killed_edge.idx();
