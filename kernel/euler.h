@@ -23,7 +23,7 @@
 // V − E + F + B − R = 2(1 − H).
 //
 // A *corner* names where a new edge is inserted into a loop: before a half-edge
-// (`Corner::before(h)`), or into a lone-vertex loop (`Corner::lone(l)`).
+// (`Corner::before(h)`), or into a lone-vertex loop (`Corner::in_lone(l)`).
 //
 // Half-edge directions: x = halfedge_of(e, 0) and y = halfedge_of(e, 1); the curve of
 // an edge runs along x. Outer loops run counter-clockwise seen from outside the face

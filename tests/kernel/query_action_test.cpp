@@ -107,8 +107,9 @@ TEST(QueryAction, RandomOperatorsReachEveryOperatorBothWays) {
   }
   for (const auto& op : kOperators) {
     EXPECT_TRUE(ok.count(std::string(op.name))) << op.name << " never succeeded";
-    if (op.name != "mvfs")  // mvfs has no precondition
+    if (op.name != "mvfs") {  // mvfs has no precondition
       EXPECT_TRUE(refused.count(std::string(op.name))) << op.name << " never refused";
+    }
   }
 }
 
