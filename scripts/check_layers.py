@@ -31,6 +31,7 @@ LAYERS = [
     ("problems",),
     ("zoo", "io"),
     ("repair",),
+    ("audit",),
     ("apps",),
     ("tests", "bench", "fuzz", "examples", "python"),
 ]
