@@ -1,10 +1,13 @@
 // Beautify on random defective models: a builder solid, up to four defects injected by
 // the zoo (any of the eleven types, sizes and places from the input), then the whole
-// pipeline. The result must pass check_topology; a violation aborts (the fuzzer reports it).
+// pipeline. The result must pass check_topology, and no Euler operator — in the injector
+// or in any repair — may refuse with postcondition (a kernel bug, which the repairs would
+// otherwise take for an ordinary refusal); a violation aborts (the fuzzer reports it).
 #include "fuzz/die.h"
 #include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
+#include "kernel/euler.h"
 #include "repair/beautify.h"
 #include "zoo/zoo.h"
 
@@ -40,5 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   beautify(b, tol);
   auto v = check_topology(b);
   if (!v.empty()) die("check_topology after beautify: " + to_string(v.front()) + "\ninjected:\n" + injected);
+  if (euler::postcondition_failures() != 0)
+    die("an Euler operator refused with postcondition (a kernel bug)\ninjected:\n" + injected);
   return 0;
 }

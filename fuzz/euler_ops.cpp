@@ -1,6 +1,7 @@
 // Random Euler operator sequences on the builders' solids: every operator either
-// succeeds and keeps every invariant, or refuses and changes nothing; rolling back the
-// whole sequence restores the start. A violation aborts (the fuzzer reports it).
+// succeeds and keeps every invariant, or refuses and changes nothing, exactly when its
+// query can_<op> says it would; no refusal is a postcondition (a kernel bug); rolling back
+// the whole sequence restores the start. A violation aborts (the fuzzer reports it).
 #include "fuzz/die.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
@@ -32,6 +33,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     while (!n.empty()) {
       Body before = b.clone();
       auto a = testing::apply_random_op(b, n);
+      if (std::string bug = testing::kernel_bug(a); !bug.empty()) die(bug);
+      if (a.query_ok != a.ok)
+        die(a.what + ": can_" + a.op + " and the operator disagree: " + a.query_error + " / " + a.error);
       if (!a.ok) {
         if (!b.equals(before)) die("refused " + a.what + " changed the body");
         continue;
@@ -43,5 +47,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::string why;
   if (!b.equals(start, &why)) die("rollback did not restore the start: " + why);
+  if (euler::postcondition_failures() != 0) die("an operator refused with postcondition (a kernel bug)");
   return 0;
 }

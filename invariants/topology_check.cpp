@@ -1,164 +1,30 @@
+// The whole-body topology check, built on the kernel's local walks (kernel/
+// local_check.h): the same loop and rotation walks over every element, then the layers
+// only a whole body can answer — each half-edge counted once, ownership, connected
+// shells, Euler–Poincaré.
 #include "invariants/topology_check.h"
 
-#include "kernel/euler_impl.h"
-
-#include <sstream>
+#include "kernel/local_check.h"
 
 namespace kintsugi {
 
-std::string to_string(const Violation& v) {
-  std::ostringstream os;
-  os << v.invariant;
-  if (!v.elements.empty()) {
-    os << " [";
-    for (std::size_t i = 0; i < v.elements.size(); ++i) os << (i ? " " : "") << v.elements[i];
-    os << "]";
-  }
-  if (!v.detail.empty()) os << ": " << v.detail;
-  return os.str();
-}
-
 namespace {
 
+// The walks plus the list they fill, so the global layers below read as before.
 struct Checker {
+  Checker(const Body& body) : b(body), walk(body, out) {}
   const Body& b;
   std::vector<Violation> out;
-
-  void add(const char* inv, std::vector<std::string> els, std::string detail) {
-    out.push_back({inv, std::move(els), std::move(detail), 0.0});
-  }
-
-  // Layer 1+2 for one half-edge: references and reciprocity. Returns false if the
-  // half-edge is too broken to walk from.
-  bool halfedge(HalfedgeH h) {
-    if (!b.alive(h)) return false;
-    HalfedgeH n = b.next(h), p = b.prev(h);
-    bool ok = true;
-    if (!b.alive(n) || !b.alive(p)) {
-      add("reference", {h.str()}, "next or prev is not a live half-edge");
-      return false;
-    }
-    if (!b.alive(b.origin(h))) {
-      add("reference", {h.str()}, "origin " + b.origin(h).str() + " is not a live vertex");
-      ok = false;
-    }
-    if (!b.alive(b.loop(h))) {
-      add("reference", {h.str()}, "loop " + b.loop(h).str() + " is not a live loop");
-      return false;
-    }
-    if (b.prev(n) != h || b.next(p) != h) {
-      add("twin_next_prev", {h.str(), n.str(), p.str()}, "next/prev are not reciprocal");
-      ok = false;
-    }
-    if (b.origin(n) != b.target(h)) {
-      add("twin_next_prev", {h.str(), n.str()}, "next does not start where " + h.str() + " ends");
-      ok = false;
-    }
-    if (b.loop(n) != b.loop(h)) {
-      add("loop_membership", {h.str(), n.str()}, "next is in another loop");
-      ok = false;
-    }
-    if (b.is_border(h) && b.alive(b.loop(twin(h))) && b.is_border(twin(h)))
-      add("edge_without_face", {edge_of(h).str()}, "both sides are border cycles");
-    return ok;
-  }
-
-  // A loop is a closed cycle of its own half-edges (or a lone vertex). Returns the
-  // cycle length, or -1 when the walk did not close.
-  long loop(LoopH l) {
-    if (!b.alive(l)) {
-      add("reference", {l.str()}, "not a live loop");
-      return -1;
-    }
-    FaceH f = b.face(l);
-    if (f.valid() && !b.alive(f)) add("reference", {l.str()}, "face " + f.str() + " is not a live face");
-    if (b.is_lone(l)) {
-      if (!b.alive(b.lone_vertex(l))) {
-        add("lone_vertex", {l.str()}, "lone vertex is not a live vertex");
-      } else if (b.out(b.lone_vertex(l)).valid()) {
-        add("lone_vertex", {l.str(), b.lone_vertex(l).str()}, "the lone vertex has edges");
-      }
-      if (b.is_border(l)) add("lone_vertex", {l.str()}, "a border cycle has no edges");
-      return 0;
-    }
-    HalfedgeH start = b.first(l);
-    if (!b.alive(start)) {
-      add("reference", {l.str()}, "first half-edge is not live");
-      return -1;
-    }
-    long n = 0;
-    HalfedgeH h = start;
-    const long bound = static_cast<long>(b.halfedge_slots());
-    do {
-      if (!halfedge(h)) return -1;
-      if (b.loop(h) != l) {
-        add("loop_membership", {l.str(), h.str()}, "half-edge on the cycle belongs to " + b.loop(h).str());
-        return -1;
-      }
-      h = b.next(h);
-      ++n;
-    } while (h != start && n <= bound);
-    if (h != start) {
-      add("loop_closed", {l.str()}, "the cycle from " + start.str() + " does not close");
-      return -1;
-    }
-    return n;
-  }
-
-  // The rotation of v covers exactly the half-edges leaving v.
-  long vertex(VertexH v) {
-    if (!b.alive(v)) {
-      add("reference", {v.str()}, "not a live vertex");
-      return -1;
-    }
-    HalfedgeH start = b.out(v);
-    if (!start.valid()) return 0;
-    if (!b.alive(start)) {
-      add("reference", {v.str()}, "out half-edge " + start.str() + " is not live");
-      return -1;
-    }
-    long n = 0;
-    HalfedgeH h = start;
-    const long bound = static_cast<long>(b.halfedge_slots());
-    do {
-      if (!b.alive(h) || b.origin(h) != v) {
-        add("vertex_orbit", {v.str(), h.str()}, "rotation reaches a half-edge that does not leave " + v.str());
-        return -1;
-      }
-      if (!b.alive(b.prev(h))) return -1;
-      h = b.next(twin(h));
-      ++n;
-    } while (h != start && n <= bound);
-    if (h != start) {
-      add("vertex_orbit", {v.str()}, "rotation does not close");
-      return -1;
-    }
-    return n;
-  }
+  StructureWalk walk;
+  void add(const char* inv, std::vector<std::string> els, std::string detail) { walk.add(inv, std::move(els), std::move(detail)); }
+  long loop(LoopH l) { return walk.loop(l); }
+  long vertex(VertexH v) { return walk.vertex(v); }
 };
 
 }  // namespace
 
-std::vector<Violation> check_local(const Body& b, const Touched& t) {
-  Checker c{b, {}};
-  for (LoopH l : t.loops) {
-    if (!b.alive(l)) continue;  // killed by the operator
-    c.loop(l);
-  }
-  for (VertexH v : t.vertices) {
-    if (!b.alive(v)) continue;
-    c.vertex(v);
-  }
-  for (FaceH f : t.faces) {
-    if (!b.alive(f)) continue;
-    LoopH o = b.outer_loop(f);
-    if (!b.alive(o) || b.face(o) != f) c.add("face_loops", {f.str()}, "outer loop is not the face's");
-  }
-  return c.out;
-}
-
 std::vector<Violation> check_topology(const Body& b) {
-  Checker c{b, {}};
+  Checker c(b);
   // Loops: closed cycles, and every half-edge counted exactly once.
   std::vector<long> per_loop(b.loop_slots(), 0);
   for (HalfedgeH h : b.halfedges()) {

@@ -3,7 +3,7 @@
 // The writer is io/native_json_writer.cpp, atomic file writes io/atomic_file.cpp.
 #include "io/native_json.h"
 
-#include "kernel/assemble.h"
+#include "invariants/assemble.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

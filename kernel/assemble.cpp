@@ -1,7 +1,5 @@
 #include "kernel/assemble.h"
 
-#include "invariants/topology_check.h"
-
 namespace kintsugi {
 
 class BodyReader {
@@ -142,15 +140,12 @@ std::optional<Body> BodyReader::run(const BodyDescription& d, AssembleError* err
     b.senses_[f.id] = f.same_sense ? 1 : 0;
     b.shells_[f.shell].faces++;
   }
-  std::vector<Violation> bad = check_topology(b);
-  if (!bad.empty()) {
-    fail(error, bad.front().elements.empty() ? "" : bad.front().elements.front(), to_string(bad.front()));
-    return std::nullopt;
-  }
   return b;
 }
 
-std::optional<Body> assemble(const BodyDescription& d, AssembleError* error) { return BodyReader::run(d, error); }
+std::optional<Body> assemble_references(const BodyDescription& d, AssembleError* error) {
+  return BodyReader::run(d, error);
+}
 
 BodyDescription describe(const Body& b) {
   BodyDescription d;

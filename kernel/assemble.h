@@ -1,8 +1,10 @@
 // Assembling a body from a description of its elements, for readers (native JSON,
 // OpenCASCADE import). Readers do not replay Euler operators: they describe the final
-// incidences, and assemble() checks them — references in range, each element named
-// once, then the full topology check — before handing out a body. A description is
-// refused with an error naming the element, never with undefined behaviour.
+// incidences. Readers call assemble() (invariants/assemble.h), which checks them —
+// references in range, each element named once (here, in the kernel, which alone may
+// fill a body's storage), then the whole-body topology check (invariants/) — before
+// handing out a body. A description is refused with an error naming the element, never
+// with undefined behaviour.
 //
 // Ids are the handles the body will have (so names survive write → read); gaps between
 // ids become dead slots. To bound memory, ids must be below 2·count + 1024 for each kind.
@@ -64,8 +66,10 @@ struct AssembleError {
   std::string message;
 };
 
-// Builds the body, or says what is wrong. The journal of the result is empty.
-std::optional<Body> assemble(const BodyDescription& d, AssembleError* error);
+// The first half of assemble(): builds the body after checking ids and references only,
+// or says what is wrong. Its loops and rotations are NOT yet known to close: only
+// assemble() (invariants/assemble.h) hands out a body fit for the operators.
+std::optional<Body> assemble_references(const BodyDescription& d, AssembleError* error);
 
 // The description of a body (live elements only, ids = handles): what writers write.
 BodyDescription describe(const Body& b);

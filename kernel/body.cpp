@@ -110,9 +110,7 @@ std::vector<HalfedgeH> Body::outgoing(VertexH v) const {
 
 void Body::set_point(VertexH v, const geo::Vec3& p) {
   if (journaling_) {
-    JournalEntry e;
-    e.op = Op::set_point;
-    e.h[0] = v.idx();
+    JournalEntry e{SetPointRecord{v}};
     e.saved = EulerImpl::save(*this, &points_[v.idx()], nullptr, nullptr, 1);
     journal_.entries_.push_back(e);
   }
@@ -121,9 +119,7 @@ void Body::set_point(VertexH v, const geo::Vec3& p) {
 
 void Body::set_curve(EdgeH e, geo::Curve c) {
   if (journaling_) {
-    JournalEntry j;
-    j.op = Op::set_curve;
-    j.h[0] = e.idx();
+    JournalEntry j{SetCurveRecord{e}};
     j.saved = EulerImpl::save(*this, nullptr, &curves_[e.idx()], nullptr, 1);
     journal_.entries_.push_back(j);
   }
@@ -132,9 +128,7 @@ void Body::set_curve(EdgeH e, geo::Curve c) {
 
 void Body::set_surface(FaceH f, geo::Surface s, bool same_sense) {
   if (journaling_) {
-    JournalEntry j;
-    j.op = Op::set_surface;
-    j.h[0] = f.idx();
+    JournalEntry j{SetSurfaceRecord{f}};
     j.saved = EulerImpl::save(*this, nullptr, nullptr, &surfaces_[f.idx()], senses_[f.idx()]);
     journal_.entries_.push_back(j);
   }

@@ -53,7 +53,7 @@ struct Counts {
   bool operator==(const Counts&) const = default;
 };
 
-class EulerImpl;  // kernel/euler.cpp: the only code that changes topology
+class EulerImpl;  // kernel/euler.cpp and kernel/op_*.cpp: the only code that changes topology
 
 class Body {
  public:

@@ -27,7 +27,7 @@ const char* op_name(Op op) {
 
 std::vector<std::string> Journal::op_names(std::size_t from) const {
   std::vector<std::string> out;
-  for (std::size_t i = from; i < entries_.size(); ++i) out.emplace_back(op_name(entries_[i].op));
+  for (std::size_t i = from; i < entries_.size(); ++i) out.emplace_back(op_name(entries_[i].op()));
   return out;
 }
 

@@ -5,31 +5,25 @@
 #pragma once
 
 #include "geometry/types.h"
+#include "kernel/journal_records.h"
 
-#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace kintsugi {
 
-enum class Op : std::uint8_t {
-  mvfs, kvfs, mev, kev, mef, kef, kemr, mekr, kfmrh, mfkrh, semv, jekv, kfmb, mfkb,
-  set_point, set_curve, set_surface,
-};
-const char* op_name(Op op);
-
-// One journaled operator. `h` holds handle indices whose meaning depends on the
-// operator (documented at each operator in kernel/euler.cpp, where entries are made
-// and undone). Geometry that an operator destroys or overwrites is saved in the
-// journal's side tables and referred to by index, so the entry stays small.
+// One journaled operator: its record (kernel/journal_records.h, one named struct per
+// operator), and where the geometry it destroyed or overwrote went in the journal's side
+// tables, so the entry stays small.
 struct JournalEntry {
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  Op op;
-  std::uint8_t flags = 0;
-  std::array<std::uint32_t, 7> h{kNone, kNone, kNone, kNone, kNone, kNone, kNone};
-  std::uint32_t saved = kNone;  // index into the side table for this op's geometry
+  JournalRecord record;
+  std::uint32_t saved = kNone;  // index into the side tables for this op's geometry
   std::uint32_t extra = kNone;  // index into `lists` (e.g. rings moved by kef)
+  Op op() const {
+    return std::visit([](const auto& r) { return std::decay_t<decltype(r)>::kOp; }, record);
+  }
 };
 
 class Journal {

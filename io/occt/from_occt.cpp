@@ -10,7 +10,7 @@
 
 #include "geometry/surface.h"
 #include "geometry/types.h"
-#include "kernel/assemble.h"
+#include "invariants/assemble.h"
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepLib.hxx>

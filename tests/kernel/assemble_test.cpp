@@ -1,4 +1,4 @@
-#include "kernel/assemble.h"
+#include "invariants/assemble.h"
 #include "kernel/builders.h"
 #include "kernel/euler.h"
 

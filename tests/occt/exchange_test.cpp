@@ -2,7 +2,7 @@
 // validity check on our bodies.
 #include "invariants/topology_check.h"
 #include "io/occt/exchange.h"
-#include "kernel/assemble.h"
+#include "invariants/assemble.h"
 #include "kernel/builders.h"
 #include "kernel/euler.h"
 #include "tests/occt/compare.h"

@@ -23,13 +23,25 @@ Corner corner_in(const Body& b, LoopH l, Numbers& n) {
   return Corner::before(pick(b.loop_halfedges(l), n));
 }
 
-template <class T>
-Applied done(std::string what, const Result<T>& r, OpKind kind) {
+// What the query said, before the operator runs.
+Applied ask(const char* op, std::string what, OpKind kind, const std::optional<Error>& refusal) {
   Applied a;
+  a.op = op;
   a.what = std::move(what);
-  a.ok = r.ok();
   a.kind = kind;
-  if (!r.ok()) a.error = r.error().message;
+  a.query_ok = !refusal;
+  if (refusal) a.query_error = error_code_name(refusal->code) + std::string(": ") + refusal->message;
+  return a;
+}
+
+// What the operator did.
+template <class T>
+Applied& answer(Applied& a, const Result<T>& r) {
+  a.ok = r.ok();
+  if (!r.ok()) {
+    a.error = r.error().message;
+    a.code = r.error().code;
+  }
   return a;
 }
 
@@ -49,22 +61,26 @@ Applied apply_random_op(Body& b, Numbers& n) {
   switch (n.below(15)) {
     case 0: {
       if (n.below(4) != 0) break;  // new shells rarely
-      auto r = euler::mvfs(b, point(n));
-      Applied a = done("mvfs", r, OpKind::make);
-      if (r) a.inverse = [f = r->face](Body& x) { return euler::kvfs(x, f); };
+      geo::Vec3 p = point(n);
+      Applied a = ask("mvfs", "mvfs", OpKind::make, euler::can_mvfs(b, p));
+      auto r = euler::mvfs(b, p);
+      if (answer(a, r).ok) a.inverse = [f = r->face](Body& x) { return euler::kvfs(x, f); };
       return a;
     }
     case 1: {
       FaceH f = any_face();
-      return done("kvfs(" + f.str() + ")", euler::kvfs(b, f), OpKind::kill);
+      Applied a = ask("kvfs", "kvfs(" + f.str() + ")", OpKind::kill, euler::can_kvfs(b, f));
+      return answer(a, euler::kvfs(b, f));
     }
     case 2: {
       if (loops.empty()) break;
       LoopH l = any_loop();
       Corner c = b.alive(l) ? corner_in(b, l, n) : Corner::in_lone(l);
-      auto r = euler::mev(b, c, point(n));
-      Applied a = done("mev(" + (c.he.valid() ? c.he.str() : c.lone.str()) + ")", r, OpKind::make);
-      if (r) a.inverse = [x = r->x](Body& body) { return euler::kev(body, x); };
+      geo::Vec3 p = point(n);
+      Applied a = ask("mev", "mev(" + (c.he.valid() ? c.he.str() : c.lone.str()) + ")", OpKind::make,
+                      euler::can_mev(b, c, p));
+      auto r = euler::mev(b, c, p);
+      if (answer(a, r).ok) a.inverse = [x = r->x](Body& body) { return euler::kev(body, x); };
       return a;
     }
     case 3: {
@@ -73,33 +89,37 @@ Applied apply_random_op(Body& b, Numbers& n) {
       auto outs = b.outgoing(v);
       if (outs.size() < 2) break;
       HalfedgeH h1 = pick(outs, n), h2 = pick(outs, n);
-      auto r = euler::mev_split(b, h1, h2, point(n));
-      Applied a = done("mev_split(" + h1.str() + ", " + h2.str() + ")", r, OpKind::make);
-      if (r) a.inverse = [x = r->x](Body& body) { return euler::kev(body, x); };
+      geo::Vec3 p = point(n);
+      Applied a = ask("mev_split", "mev_split(" + h1.str() + ", " + h2.str() + ")", OpKind::make,
+                      euler::can_mev_split(b, h1, h2, p));
+      auto r = euler::mev_split(b, h1, h2, p);
+      if (answer(a, r).ok) a.inverse = [x = r->x](Body& body) { return euler::kev(body, x); };
       return a;
     }
     case 4: {
       HalfedgeH h = any_he();
-      return done("kev(" + h.str() + ")", euler::kev(b, h), OpKind::kill);
+      Applied a = ask("kev", "kev(" + h.str() + ")", OpKind::kill, euler::can_kev(b, h));
+      return answer(a, euler::kev(b, h));
     }
     case 5: case 6: {
       if (loops.empty()) break;
       LoopH l = any_loop();
       Corner c1 = b.alive(l) ? corner_in(b, l, n) : Corner::in_lone(l);
       Corner c2 = b.alive(l) ? corner_in(b, l, n) : Corner::in_lone(l);
+      Applied a = ask("mef", "mef(" + l.str() + ")", OpKind::make, euler::can_mef(b, c1, c2));
       auto r = euler::mef(b, c1, c2);
-      Applied a = done("mef(" + l.str() + ")", r, OpKind::make);
-      if (r) a.inverse = [h = r->a](Body& body) { return euler::kef(body, h); };
+      if (answer(a, r).ok) a.inverse = [h = r->a](Body& body) { return euler::kef(body, h); };
       return a;
     }
     case 7: {
       HalfedgeH h = any_he();
-      return done("kef(" + h.str() + ")", euler::kef(b, h), OpKind::kill);
+      Applied a = ask("kef", "kef(" + h.str() + ")", OpKind::kill, euler::can_kef(b, h));
+      return answer(a, euler::kef(b, h));
     }
     case 8: {
       HalfedgeH h = any_he();
-      auto r = euler::kemr(b, h);
-      return done("kemr(" + h.str() + ")", r, OpKind::kill);
+      Applied a = ask("kemr", "kemr(" + h.str() + ")", OpKind::kill, euler::can_kemr(b, h));
+      return answer(a, euler::kemr(b, h));
     }
     case 9: {
       if (faces.empty()) break;
@@ -107,33 +127,36 @@ Applied apply_random_op(Body& b, Numbers& n) {
       auto ls = b.loops_of(f);
       if (ls.size() < 2) break;
       LoopH l1 = pick(ls, n), l2 = ls[1 + n.below(ls.size() - 1)];
-      auto r = euler::mekr(b, corner_in(b, l1, n), corner_in(b, l2, n));
+      Corner c1 = corner_in(b, l1, n), c2 = corner_in(b, l2, n);
       // mekr kills the ring: its public inverse kemr makes a ring with a new handle, so
       // only the journaled inverse restores an equal body (EachOperatorRollsBackAlone).
-      return done("mekr(" + l1.str() + ", " + l2.str() + ")", r, OpKind::kill);
+      Applied a = ask("mekr", "mekr(" + l1.str() + ", " + l2.str() + ")", OpKind::kill, euler::can_mekr(b, c1, c2));
+      return answer(a, euler::mekr(b, c1, c2));
     }
     case 10: {
       FaceH f1 = any_face(), f2 = any_face();
-      return done("kfmrh(" + f1.str() + ", " + f2.str() + ")", euler::kfmrh(b, f1, f2), OpKind::kill);
+      Applied a = ask("kfmrh", "kfmrh(" + f1.str() + ", " + f2.str() + ")", OpKind::kill, euler::can_kfmrh(b, f1, f2));
+      return answer(a, euler::kfmrh(b, f1, f2));
     }
     case 11: {
       LoopH l = any_loop();
       FaceH keep = b.alive(l) && !b.is_border(l) ? b.face(l) : FaceH{};
+      Applied a = ask("mfkrh", "mfkrh(" + l.str() + ")", OpKind::make, euler::can_mfkrh(b, l));
       auto r = euler::mfkrh(b, l);
-      Applied a = done("mfkrh(" + l.str() + ")", r, OpKind::make);
-      if (r) a.inverse = [keep, nf = r->face](Body& body) { return euler::kfmrh(body, keep, nf); };
+      if (answer(a, r).ok) a.inverse = [keep, nf = r->face](Body& body) { return euler::kfmrh(body, keep, nf); };
       return a;
     }
     case 12: {
       FaceH f = any_face();
-      return done("kfmb(" + f.str() + ")", euler::kfmb(b, f), OpKind::kill);
+      Applied a = ask("kfmb", "kfmb(" + f.str() + ")", OpKind::kill, euler::can_kfmb(b, f));
+      return answer(a, euler::kfmb(b, f));
     }
     case 13: {
       auto bs = b.border_cycles();
       LoopH l = junk || bs.empty() ? any_loop() : pick(bs, n);
+      Applied a = ask("mfkb", "mfkb(" + l.str() + ")", OpKind::make, euler::can_mfkb(b, l));
       auto r = euler::mfkb(b, l);
-      Applied a = done("mfkb(" + l.str() + ")", r, OpKind::make);
-      if (r) a.inverse = [f = r->face](Body& body) {
+      if (answer(a, r).ok) a.inverse = [f = r->face](Body& body) {
         auto k = euler::kfmb(body, f);
         return k ? Result<Done>(Done{}) : Result<Done>(k.error());
       };
@@ -142,17 +165,24 @@ Applied apply_random_op(Body& b, Numbers& n) {
     case 14: {
       HalfedgeH h = any_he();
       if (n.below(2) == 0) {
-        auto r = euler::semv(b, h, point(n));
-        Applied a = done("semv(" + h.str() + ")", r, OpKind::make);
-        if (r) a.inverse = [h](Body& body) { return euler::jekv(body, h); };
+        geo::Vec3 p = point(n);
+        Applied a = ask("semv", "semv(" + h.str() + ")", OpKind::make, euler::can_semv(b, h, p));
+        auto r = euler::semv(b, h, p);
+        if (answer(a, r).ok) a.inverse = [h](Body& body) { return euler::jekv(body, h); };
         return a;
       }
-      return done("jekv(" + h.str() + ")", euler::jekv(b, h), OpKind::kill);
+      Applied a = ask("jekv", "jekv(" + h.str() + ")", OpKind::kill, euler::can_jekv(b, h));
+      return answer(a, euler::jekv(b, h));
     }
   }
   Applied none;
   none.what = "none";
   return none;
+}
+
+std::string kernel_bug(const Applied& a) {
+  if (a.ok || a.code != ErrorCode::postcondition) return "";
+  return a.what + " refused with postcondition (a kernel bug): " + a.error;
 }
 
 }  // namespace kintsugi::testing

@@ -31,15 +31,25 @@ class Numbers {
 enum class OpKind { make, kill };
 
 struct Applied {
+  std::string op;    // the operator's name as in kernel/operator_list.h, e.g. "mef"
   std::string what;  // e.g. "mef(h3, h7)"
   bool ok = false;
+  // What can_<op> said before the operator ran, on the same body and arguments: the
+  // operator must succeed exactly when its query says yes.
+  bool query_ok = false;
+  std::string query_error;
   std::string error;
+  ErrorCode code = ErrorCode::dead_handle;  // when !ok; postcondition is a kernel bug
   OpKind kind = OpKind::make;
   // For a make operator that succeeded: applies its public inverse (kev after mev, ...).
   std::function<Result<Done>(Body&)> inverse;
 };
 
-// Applies one operator chosen by `n` to `b`.
+// Applies one operator chosen by `n` to `b`, asking its query first.
 Applied apply_random_op(Body& b, Numbers& n);
+
+// "mev(h3) refused with postcondition: ..." when `a` is a refusal that is a kernel bug,
+// else empty. Every test and fuzz target that applies operators fails on it.
+std::string kernel_bug(const Applied& a);
 
 }  // namespace kintsugi::testing
