@@ -131,6 +131,8 @@ struct GeometryCase {
   std::function<void(Body&)> breaks;
 };
 
+void PrintTo(const GeometryCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<GeometryCase> geometry_cases() {
   const double p = kPrecision;
   return {

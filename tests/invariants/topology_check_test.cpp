@@ -90,6 +90,8 @@ struct Case {
   std::function<void(Body&)> breaks;
 };
 
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
 // A half-edge of face f's outer loop, and the one after it.
 HalfedgeH first_of(const Body& b, FaceH f) { return b.first(b.outer_loop(f)); }
 
@@ -150,9 +152,9 @@ std::vector<Case> cases() {
          // The face across an edge of the gap becomes a second border cycle.
          LoopH gap = b.border_cycles().at(0);
          FaceH f = b.face(twin(b.first(gap)));
+         RawBody::shell(b, b.shell(f)).faces--;
          RawBody::loop(b, b.outer_loop(f)).face = FaceH{};
          RawBody::kill(b, f);
-         RawBody::shell(b, b.shell(b.outer_loop(f))).faces--;
        }},
       {"DanglingDeadLoopNamedByHalfedges", "dangling", box_with_gap,
        [](Body& b) { RawBody::kill(b, b.border_cycles().at(0)); }},
