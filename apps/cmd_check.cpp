@@ -15,7 +15,7 @@ namespace kintsugi::cli {
 
 namespace {
 const char* kHelp =
-    "usage: kintsugi check FILE [--json] [--occt]\n\n"
+    "usage: kintsugi check FILE [--json] [--tol T] [--occt]\n\n"
     "Loads FILE and runs the full invariant check: twin/next/prev, closed loops, vertex\n"
     "rotations, face and shell ownership, connected shells, Euler-Poincare per shell.\n"
     "Prints the counts (vertices, edges, faces, loops, shells, border cycles) and every\n"

@@ -1,6 +1,7 @@
 #include "apps/args.h"
 #include "apps/commands.h"
 #include "apps/model_files.h"
+#include "invariants/element_geometry.h"
 #include "problems/problem_type.h"
 #include "zoo/zoo.h"
 
@@ -29,19 +30,13 @@ void help(std::ostream& os) {
         "  --at HANDLE   put the defect at this element: a face (fN), edge (eN) or vertex (vN),\n"
         "                whichever the type needs (a face also offers its edges and vertices)\n"
         "  --tol T       the tolerance; the defect's size is below it. Default: meta.tolerance of\n"
-        "                IN, else 1% of the bounding-box diagonal (then written to meta.tolerance)\n"
+        "                IN, else 1% of the model size (then written to meta.tolerance)\n"
         "  -o OUT        output file (never the input). Formats: "
      << formats_supported()
      << "\n\n"
         "Most types need planar faces and straight edges near the place; short_edge needs a\n"
         "vertex of degree 4 or more with a triangular face (e.g. a pyramid apex).\n"
         "Exit: 0 done, 2 bad usage, unreadable input, unknown type, or no suitable place.\n";
-}
-
-double diagonal(const Body& b) {
-  geo::Vec3 lo = geo::Vec3::Constant(1e300), hi = geo::Vec3::Constant(-1e300);
-  for (VertexH v : b.vertices()) lo = lo.cwiseMin(b.point(v)), hi = hi.cwiseMax(b.point(v));
-  return b.vertices().empty() ? 0.0 : (hi - lo).norm();
 }
 
 }  // namespace
@@ -101,8 +96,8 @@ int cmd_inject(const std::vector<std::string>& argv, std::ostream& out, std::ost
   } else if (model->meta.contains("tolerance") && model->meta["tolerance"].is_number()) {
     tol = model->meta["tolerance"].get<double>();
   } else {
-    tol = 0.01 * diagonal(model->body);
-    err << "kintsugi inject: " << in << " has no meta.tolerance; using 1% of the bounding-box diagonal, " << tol
+    tol = 0.01 * model_size(model->body);
+    err << "kintsugi inject: " << in << " has no meta.tolerance; using 1% of the model size, " << tol
         << " (written to meta.tolerance)\n";
     model->meta["tolerance"] = tol;
   }

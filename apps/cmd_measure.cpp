@@ -56,7 +56,7 @@ int cmd_measure(const std::vector<std::string>& argv, std::ostream& out, std::os
   const Body& b = model->body;
   // Far finer than any decision needs, far coarser than the precision (which would make
   // tens of thousands of points per circle).
-  double chordal = 1e-3 * choice->tol.length;
+  double chordal = choice->tol.measure_chordal();
   nlohmann::json faces = nlohmann::json::array(), edges = nlohmann::json::array();
   double total = 0;
   int failed = 0;

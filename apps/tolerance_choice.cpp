@@ -17,8 +17,7 @@ std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<do
     }
     return ToleranceChoice{geo::Tolerances::for_model(t.get<double>(), size), "meta.tolerance"};
   }
-  double t = size > 0 ? 1e-3 * size : 1e-3;
-  return ToleranceChoice{geo::Tolerances::for_model(t, size), "default (1e-3 x model size)"};
+  return ToleranceChoice{geo::Tolerances::default_for_model(size), "default (1e-3 x model size)"};
 }
 
 }  // namespace kintsugi::cli

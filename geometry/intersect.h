@@ -38,11 +38,11 @@ struct IntersectOptions {
   Box region;                   // region of interest: required to bound unbounded branches
   int seed_grid = 48;           // samples per parameter direction when seeding the march
 
-  // precision from the tolerances, chordal error 1/100 of the length tolerance.
+  // precision from the tolerances, chordal error Tolerances::intersection_chordal().
   static IntersectOptions for_model(const Tolerances& tol, const Box& region) {
     IntersectOptions o;
     o.precision = tol.precision;
-    o.chordal_error = 0.01 * tol.length;
+    o.chordal_error = tol.intersection_chordal();
     o.region = region;
     return o;
   }

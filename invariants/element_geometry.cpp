@@ -91,6 +91,23 @@ double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal) {
       .distance;
 }
 
+namespace {
+
+// Curves and faces are sampled for the model's size with a chordal error of 1e-3 of a
+// first estimate of that size: no tolerance exists yet (the default tolerance derives
+// from the size), and a thousandth changes the diagonal by less than any decision cares.
+constexpr double kSizeChordalRatio = 1e-3;
+
+// A box that holds the whole of a sphere or torus (not only the face's part of it).
+std::optional<geo::Box> closed_surface_box(const geo::Surface& s) {
+  if (const auto* k = std::get_if<geo::Sphere>(&s)) return geo::Box::around(k->frame.origin, std::abs(k->radius));
+  if (const auto* k = std::get_if<geo::Torus>(&s))
+    return geo::Box::around(k->frame.origin, std::abs(k->major_radius) + std::abs(k->minor_radius));
+  return std::nullopt;
+}
+
+}  // namespace
+
 geo::Box body_bounds(const Body& b) {
   geo::Box box;
   for (VertexH v : b.vertices()) box.add(b.point(v));
@@ -107,7 +124,20 @@ geo::Box body_bounds(const Body& b) {
   for (EdgeH e : b.edges()) {
     const geo::Curve& c = b.curve(e);
     if (std::holds_alternative<geo::Line>(c) || std::holds_alternative<std::monostate>(c)) continue;
-    for (const geo::Vec3& p : halfedge_polyline(b, halfedge_of(e, 0), 1e-3 * size)) box.add(p);
+    for (const geo::Vec3& p : halfedge_polyline(b, halfedge_of(e, 0), kSizeChordalRatio * size)) box.add(p);
+  }
+  // Faces bulge beyond their boundaries only on spheres and tori (a sphere bounded by one
+  // seam arc, a dome): planes, cylinders and cones are linear along their rulings, so a
+  // face's extent in any direction is reached on its boundary. A sphere or torus face is
+  // measured only where its whole surface is not already inside the box: cheap for a
+  // model whose fillets lie within it.
+  for (FaceH f : b.faces()) {
+    std::optional<geo::Box> whole = closed_surface_box(b.surface(f));
+    if (!whole || (!box.empty() && box.contains(whole->min) && box.contains(whole->max))) continue;
+    geo::RegionMeasure m = face_measure(b, f, kSizeChordalRatio * std::max(size, whole->diagonal()));
+    const geo::Box& add = m.ok() && !m.bounds.empty() ? m.bounds : *whole;
+    box.add(add.min);
+    box.add(add.max);
   }
   return box;
 }

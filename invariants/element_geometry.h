@@ -34,9 +34,11 @@ struct AreaAndBounds {
 std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal);
 double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal);
 double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal);
-// Bounding box of the vertices and sampled edges: its diagonal is the model size the
-// tolerance model scales with.
+// Bounding box of the vertices, the sampled edges and the faces that bulge beyond their
+// edges (spheres, tori).
 geo::Box body_bounds(const Body& b);
+// The model size the tolerance model scales with (geometry/tolerance.h): the diagonal of
+// body_bounds. The one measure of a model's size; 0 for an empty body.
 double model_size(const Body& b);
 
 }  // namespace kintsugi

@@ -3,6 +3,7 @@
 #include "geometry/curve.h"
 #include "geometry/polygon.h"
 #include "geometry/surface.h"
+#include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
 
 #include <cmath>
@@ -109,7 +110,7 @@ GeometryReport check_geometry(const Body& b, double precision) {
     if (b.is_lone(l)) continue;
     std::vector<geo::Vec3> pts;
     for (HalfedgeH h : b.loop_halfedges(l)) {
-      auto seg = halfedge_polyline(b, h, std::max(precision, 1e-300) * 1e5);
+      auto seg = halfedge_polyline(b, h, geo::Tolerances::orientation_chordal(std::max(precision, 1e-300)));
       pts.insert(pts.end(), seg.begin(), seg.end() - 1);
     }
     geo::Vec3 n = geo::polygon_normal(pts);

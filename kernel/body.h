@@ -165,6 +165,7 @@ class Body {
   friend class EulerImpl;
   friend class Transaction;
   friend class BodyReader;
+  friend struct RawBody;  // tests/invariants/raw_body.h: raw edits that break one invariant
 
   std::vector<VertexRec> vertices_;
   std::vector<HalfedgeRec> halfedges_;

@@ -60,7 +60,7 @@ std::vector<FaceH> faces_around(const Body& b, VertexH v) {
 }
 
 double face_area(const Body& b, FaceH f, const geo::Tolerances& tol) {
-  geo::RegionMeasure m = face_measure(b, f, 1e-3 * tol.length);
+  geo::RegionMeasure m = face_measure(b, f, tol.measure_chordal());
   return m.ok() ? m.area : HUGE_VAL;
 }
 
@@ -94,13 +94,13 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   region.add(p1);
   if (!std::holds_alternative<std::monostate>(old)) {
     if (geo::is_closed(old) || closed) {
-      for (const auto& q : geo::sample_curve(old, 0, geo::period(old) > 0 ? geo::period(old) : 1.0, tol.length))
+      for (const auto& q : geo::sample_curve(old, 0, geo::period(old) > 0 ? geo::period(old) : 1.0, tol.region_chordal()))
         region.add(q);
     } else {
-      for (const auto& q : halfedge_polyline(b, h, tol.length)) region.add(q);
+      for (const auto& q : halfedge_polyline(b, h, tol.region_chordal())) region.add(q);
     }
   }
-  const double margin = std::max(0.25 * region.diagonal(), 10 * tol.length);
+  const double margin = std::max(0.25 * region.diagonal(), tol.intersection_margin());
   region.min.array() -= margin;
   region.max.array() += margin;
   auto curves = geo::intersect(sf, sg, geo::IntersectOptions::for_model(tol, region));
@@ -242,7 +242,7 @@ double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& t
       return HUGE_VAL;
     }
     HalfedgeH h = halfedge_of(e, 0);
-    auto pts = halfedge_polyline(b, h, tol.length * 0.1);
+    auto pts = halfedge_polyline(b, h, tol.probe_chordal());
     std::vector<geo::Vec3> probes;
     if (pts.size() == 2) {
       for (double s : {0.25, 0.5, 0.75}) probes.push_back(pts[0] + s * (pts[1] - pts[0]));

@@ -10,7 +10,7 @@ namespace kintsugi {
 namespace detail {
 
 DetectContext::DetectContext(const Body& body, const geo::Tolerances& t, Scope s, bool w)
-    : b(body), tol(t), chordal(1e-3 * t.length), scope(std::move(s)), whole(w) {
+    : b(body), tol(t), chordal(t.measure_chordal()), scope(std::move(s)), whole(w) {
   if (whole) {
     face_dense_.resize(b.face_slots());
     face_done_.assign(b.face_slots(), 0);

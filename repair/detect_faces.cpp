@@ -239,7 +239,7 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     auto it = cache.find(f);
     if (it == cache.end()) {
       it = cache.emplace(f, std::vector<geo::Vec3>{}).first;
-      for (const auto& loop : face_boundary(b, f, c.chordal * 100)) it->second.insert(it->second.end(), loop.begin(), loop.end());
+      for (const auto& loop : face_boundary(b, f, c.tol.probe_chordal())) it->second.insert(it->second.end(), loop.begin(), loop.end());
     }
     return it->second;
   };

@@ -18,7 +18,7 @@ namespace {
 
 std::vector<geo::Vec3> samples(const Body& b, FaceH f, const geo::Tolerances& tol) {
   std::vector<geo::Vec3> pts;
-  for (const auto& loop : face_boundary(b, f, 0.1 * tol.length)) pts.insert(pts.end(), loop.begin(), loop.end());
+  for (const auto& loop : face_boundary(b, f, tol.probe_chordal())) pts.insert(pts.end(), loop.begin(), loop.end());
   return pts;
 }
 
@@ -118,7 +118,7 @@ std::string repair_same_geometry(RepairContext& c) {
       if (seen.insert(v).second) guesses.push_back({v, b.point(v)});
   for (VertexH v : ends)
     if (b.alive(v) && seen.insert(v).second) guesses.push_back({v, b.point(v)});
-  return place_vertices(b, guesses, c.tol, c.tol.length, c.touched, alike);
+  return place_vertices(b, guesses, c.tol, c.tol.max_refit_move(), c.touched, alike);
 }
 
 }  // namespace kintsugi::detail

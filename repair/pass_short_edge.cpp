@@ -24,7 +24,7 @@ std::string repair_short_edge(RepairContext& c) {
   VertexH keep = b.origin(h);
   auto r = euler::kev(b, h);
   if (!r) return std::string("kev refused: ") + r.error().message;
-  return place_vertices(b, {{keep, mid}}, c.tol, 2 * c.tol.length, c.touched);
+  return place_vertices(b, {{keep, mid}}, c.tol, c.tol.max_vertex_move(), c.touched);
 }
 
 }  // namespace

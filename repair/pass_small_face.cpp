@@ -54,7 +54,7 @@ std::string repair_small_face(RepairContext& c) {
   auto r = euler::kev(b, last);
   if (!r) return std::string("kev refused: ") + r.error().message;
   for (FaceH g : faces_around(b, keep)) c.touched.faces.insert(g);
-  return place_vertices(b, {{keep, centroid}}, c.tol, 2 * c.tol.length, c.touched);
+  return place_vertices(b, {{keep, centroid}}, c.tol, c.tol.max_vertex_move(), c.touched);
 }
 
 }  // namespace

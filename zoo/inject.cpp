@@ -3,6 +3,7 @@
 // still valid and consistent (spec/defects.md).
 #include "geometry/curve.h"
 #include "geometry/tolerance.h"
+#include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
 #include "kernel/transaction.h"
 #include "zoo/defects.h"
@@ -26,12 +27,6 @@ double edge_len(const Body& b, EdgeH e) {
     return (r.t1 - r.t0) * circle->radius;
   }
   return (q - p).norm();
-}
-
-double model_diagonal(const Body& b) {
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (VertexH v : b.vertices()) lo = lo.cwiseMin(b.point(v)), hi = hi.cwiseMax(b.point(v));
-  return b.vertices().empty() ? 0.0 : (hi - lo).norm();
 }
 
 // A planar face with a convex outer loop and no rings, all edges straight.
@@ -260,7 +255,7 @@ std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const
   std::vector<Site> candidates = sites(b, t, tolerance, rng, at, &why);
   // Try the candidates in a random order; keep the first that leaves a valid body.
   for (std::size_t i = candidates.size(); i > 1; --i) std::swap(candidates[i - 1], candidates[rng.below(i)]);
-  geo::Tolerances tols = geo::Tolerances::for_model(tolerance, model_diagonal(b));
+  geo::Tolerances tols = geo::Tolerances::for_model(tolerance, model_size(b));
   std::string last;
   for (const Site& s : candidates) {
     Transaction tx(b);

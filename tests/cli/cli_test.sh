@@ -29,10 +29,52 @@ contains "generate" "help lists verbs"
 expect 2 "no verb" -- "$K"
 expect 2 "unknown verb" -- "$K" frobnicate
 contains "unknown verb" "unknown verb is named"
-for verb in generate check measure detect; do
+# Every verb the top-level help lists is covered here; each verb's --help exits 0, shows
+# its usage line and names each of its options.
+verbs_here="generate check inject detect beautify demo convert measure"
+"$K" --help >"$dir/top" 2>&1
+for verb in $(sed -n 's/^  \([a-z]\+\) .*/\1/p' "$dir/top"); do
+  case " $verbs_here " in *" $verb "*) pass=$((pass + 1)) ;; *) fail=$((fail + 1)); echo "FAIL: verb $verb has no tests here" ;; esac
+done
+options_of() {  # one per line
+  case "$1" in
+    generate) printf '%s\n' "-o FILE" "--list" ;;
+    check) printf '%s\n' "--json" "--tol T" "--occt" ;;
+    inject) printf '%s\n' "--type NAME" "--seed S" "--at HANDLE" "--tol T" "-o OUT" ;;
+    detect) printf '%s\n' "--tol T" "--json" ;;
+    beautify) printf '%s\n' "--tol T" "-o OUT" "--report R.json" ;;
+    demo) ;;
+    convert) printf '%s\n' "IN OUT" ;;
+    measure) printf '%s\n' "--json" "--tol T" ;;
+  esac
+}
+for verb in $verbs_here; do
   expect 0 "$verb --help" -- "$K" "$verb" --help
   contains "usage: kintsugi $verb" "$verb --help shows usage"
+  while IFS= read -r opt; do contains "$opt" "$verb --help names $opt"; done < <(options_of "$verb")
 done
+
+# Bad usage of each verb: exit 2 and a message that says what is wrong.
+expect 2 "generate without a model" -- "$K" generate
+contains "usage: kintsugi generate" "generate without a model shows usage"
+expect 2 "check without a file" -- "$K" check
+contains "expected one FILE" "check without a file says so"
+expect 2 "check unknown option" -- "$K" check x.json --frob
+contains "unknown option --frob" "check names the unknown option"
+expect 2 "inject without --type" -- "$K" inject x.json -o "$dir/y.json"
+contains "--type NAME is required" "inject without --type says so"
+expect 2 "detect without a file" -- "$K" detect
+contains "expected one FILE" "detect without a file says so"
+expect 2 "beautify without -o" -- "$K" beautify x.json
+contains "expected IN and -o OUT" "beautify without -o says so"
+expect 2 "demo with an argument" -- "$K" demo extra
+contains "no arguments expected" "demo with an argument says so"
+expect 2 "convert with one file" -- "$K" convert x.json
+contains "expected IN and OUT" "convert with one file says so"
+expect 2 "measure without a file" -- "$K" measure
+contains "expected one FILE" "measure without a file says so"
+expect 2 "measure option without a value" -- "$K" measure x.json --tol
+contains "option --tol needs a value" "a missing value is named"
 expect 0 "generate --list" -- "$K" generate --list
 for m in box prism pyramid cylinder cone sphere torus grid; do contains "$m" "--list names $m"; done
 for n in 1 2 3 4 5 6 7 8 9 10; do
@@ -112,6 +154,45 @@ expect 0 "generate overwrites an ordinary output" -- "$K" generate cone -o "$dir
 expect 0 "check the replaced output" -- "$K" check "$dir/box.json"
 [ "$(md5sum <"$dir/keep.json")" = "$before" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: keep.json changed"; }
 ls "$dir"/.*tmp* >/dev/null 2>&1 && { fail=$((fail + 1)); echo "FAIL: temporary files left behind"; } || pass=$((pass + 1))
+
+# inject: a defect where it was asked for, recorded in meta.defects, found by detect
+expect 0 "generate pyramid for inject" -- "$K" generate pyramid -o "$dir/pyr.json"
+expect 0 "inject short_edge" -- "$K" inject "$dir/pyr.json" --type short_edge --seed 3 --tol 0.01 -o "$dir/pyr_short.json"
+expect 0 "check the injected model" -- "$K" check "$dir/pyr_short.json"
+contains "valid" "the injected model is valid"
+grep -q '"defects"' "$dir/pyr_short.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: inject did not record meta.defects"; }
+expect 0 "detect the injected defect" -- "$K" detect "$dir/pyr_short.json"
+contains "short_edge" "detect finds the injected short edge"
+contains "from meta.tolerance" "inject's --tol is kept in meta.tolerance"
+expect 2 "inject an unknown type" -- "$K" inject "$dir/pyr.json" --type crack -o "$dir/x.json"
+contains "unknown defect type 'crack'" "the unknown type is named"
+expect 2 "inject over its input" -- "$K" inject "$dir/pyr.json" --type short_edge -o "$dir/pyr.json"
+expect 2 "inject with no suitable place" -- "$K" inject "$dir/cylinder.json" --type short_edge --tol 0.01 -o "$dir/x.json"
+
+# beautify: the injected short edge is repaired; the output is valid and has no problems left
+expect 0 "beautify the injected model" -- "$K" beautify "$dir/pyr_short.json" -o "$dir/pyr_fixed.json" --report "$dir/report.json"
+contains "1 repaired, 0 not repaired" "beautify repairs the one problem"
+expect 0 "check the beautified model" -- "$K" check "$dir/pyr_fixed.json"
+expect 0 "detect on the beautified model" -- "$K" detect "$dir/pyr_fixed.json"
+contains ": 0 problem(s)" "nothing is left after beautify"
+for key in '"problems"' '"counts_before"' '"counts_after"' '"max_deviation"' '"seconds"'; do
+  grep -qF "$key" "$dir/report.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: beautify report lacks $key"; }
+done
+expect 0 "beautify a paper object" -- "$K" beautify "$dir/paper1.json" -o "$dir/paper1_fixed.json"
+contains "repaired" "beautify prints its summary"
+expect 2 "beautify over its input" -- "$K" beautify "$dir/pyr_short.json" -o "$dir/pyr_short.json"
+expect 2 "beautify bad tolerance" -- "$K" beautify "$dir/pyr_short.json" --tol -1 -o "$dir/x.json"
+contains "positive" "a bad tolerance is explained"
+expect 2 "beautify a missing file" -- "$K" beautify "$dir/nope.json" -o "$dir/x.json"
+
+# demo: every paper object, none crashed and none differs from its expected counts
+expect 0 "demo" -- "$K" demo
+for n in 1 2 3 4 5 6 7 8 9 10; do
+  grep -qE "^ +$n +[0-9]" "$dir/out" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: demo has no line for object $n"; }
+done
+if grep -qE "crashed|DIFFERS|could not be built" "$dir/out"; then
+  fail=$((fail + 1)); echo "FAIL: demo:"; grep -E "crashed|DIFFERS|could not be built" "$dir/out" | sed 's/^/    /'
+else pass=$((pass + 1)); fi
 
 # convert: JSON to JSON always; STEP and BREP when this build has OpenCASCADE
 expect 0 "convert json to json" -- "$K" convert "$dir/torus.json" "$dir/torus2.json"

@@ -35,6 +35,13 @@ TEST(ElementGeometry, BoxAreasAndLengths) {
   EXPECT_NEAR(model_size(b), std::sqrt(14.0), 1e-12);
 }
 
+// The model size covers what the faces cover, not only the edges: a sphere's seam is a
+// half circle, its box a cube.
+TEST(ElementGeometry, ModelSizeCoversSpheresBeyondTheirSeams) {
+  EXPECT_NEAR(model_size(build::sphere(2)), 4 * std::sqrt(3.0), 1e-2);
+  EXPECT_NEAR(model_size(build::cylinder(1, 2)), std::sqrt(4.0 + 4.0 + 4.0), 1e-2);
+}
+
 TEST(ElementGeometry, CurvedSolidsMatchClosedForms) {
   const double r = 1.5, h = 2.0, R = 3.0;
   auto near = [](double got, double want) { EXPECT_NEAR(got, want, 2e-6 * want); };

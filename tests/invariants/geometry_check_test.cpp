@@ -2,10 +2,14 @@
 #include "invariants/geometry_check.h"
 #include "kernel/builders.h"
 #include "kernel/euler.h"
+#include "tests/invariants/spec_codes.h"
 
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
+
+#include <functional>
+#include <set>
 
 namespace kintsugi {
 namespace {
@@ -100,6 +104,110 @@ TEST(GeometryCheck, ShortArcsAreProbedOnTheCurveNotTheChord) {
   }
   GeometryReport r = check_geometry(b, 3e-7);
   for (const auto& v : r.violations) ADD_FAILURE() << to_string(v);
+}
+
+}  // namespace
+}  // namespace kintsugi
+
+// ---- every violation code, alone -----------------------------------------------------
+//
+// For each code of check_geometry (spec/invariants.md, "Geometric consistency"), a valid
+// body with exactly that invariant broken: the report names it, and only it.
+
+namespace kintsugi {
+namespace {
+
+// An edge of f with both of its faces planar and different (a box edge).
+EdgeH edge_between_two_faces(const Body& b) {
+  for (EdgeH e : b.edges())
+    if (b.face(halfedge_of(e, 0)) != b.face(halfedge_of(e, 1))) return e;
+  return EdgeH{};
+}
+
+struct GeometryCase {
+  std::string name;
+  std::string code;
+  std::function<Body()> make;
+  std::function<void(Body&)> breaks;
+};
+
+void PrintTo(const GeometryCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<GeometryCase> geometry_cases() {
+  const double p = kPrecision;
+  return {
+      {"FaceWithoutSurface", "face_without_surface", [] { return build::box(); },
+       [](Body& b) { b.set_surface(b.faces()[0], geo::Surface{}); }},
+      {"EdgeWithoutCurve", "edge_without_curve", [] { return build::box(); },
+       [](Body& b) { b.set_curve(b.edges()[0], geo::Curve{}); }},
+      {"VertexOnCurveLineMovedSideways", "vertex_on_curve", [] { return build::box(); },
+       [p](Body& b) {
+         // The line moves off its vertices; the edge's probes are on the chord between
+         // the vertices, which stays on both faces.
+         EdgeH e = edge_between_two_faces(b);
+         geo::Line l = std::get<geo::Line>(b.curve(e));
+         geo::Vec3 side = l.direction.unitOrthogonal();
+         l.origin += 10 * p * side;
+         b.set_curve(e, l);
+       }},
+      {"VertexOnSurfaceLoneVertexAbovePlane", "vertex_on_surface",
+       [] {
+         Body b;
+         auto m = euler::mvfs(b, geo::Vec3(1, 2, 0));
+         b.set_surface(m->face, geo::Plane{});
+         return b;
+       },
+       [p](Body& b) { b.set_point(b.vertices()[0], geo::Vec3(1, 2, 10 * p)); }},
+      {"EdgeOnSurfaceArcBulgesOutOfOneFace", "edge_on_surface", [] { return build::box(); },
+       [](Body& b) {
+         // A flat arc through the edge's two vertices, in the plane of one face: on that
+         // face's surface, 1e-4 off the other face's, and through both vertices.
+         EdgeH e = edge_between_two_faces(b);
+         HalfedgeH h = halfedge_of(e, 0);
+         const geo::Vec3 p0 = b.point(b.origin(h)), p1 = b.point(b.target(h));
+         const geo::Vec3 n = std::get<geo::Plane>(b.surface(b.face(h))).frame.z.normalized();
+         const geo::Vec3 along = (p1 - p0).normalized(), across = n.cross(along);
+         const double half = (p1 - p0).norm() / 2, sag = 1e-4, r = (half * half + sag * sag) / (2 * sag);
+         const geo::Vec3 centre = (p0 + p1) / 2 - (r - sag) * across;
+         geo::Circle c;
+         c.frame.origin = centre;
+         c.frame.x = (p0 - centre).normalized();
+         c.frame.z = (p0 - centre).cross(p1 - centre).normalized();  // p0 to p1 the short way
+         c.radius = r;
+         b.set_curve(e, c);
+       }},
+      {"FaceSenseFlipped", "face_sense", [] { return build::box(); },
+       [](Body& b) {
+         FaceH f = b.faces()[0];
+         b.set_surface(f, b.surface(f), !b.same_sense(f));
+       }},
+  };
+}
+
+class BrokenGeometry : public ::testing::TestWithParam<GeometryCase> {};
+
+TEST_P(BrokenGeometry, IsNamedAndNothingElseIs) {
+  const GeometryCase& c = GetParam();
+  Body b = c.make();
+  GeometryReport before = check_geometry(b, kPrecision);
+  for (const Violation& v : before.violations) ADD_FAILURE() << c.name << ": before the edit: " << to_string(v);
+  c.breaks(b);
+  GeometryReport r = check_geometry(b, kPrecision);
+  ASSERT_FALSE(r.violations.empty()) << c.name << ": the broken " << c.code << " went unnoticed";
+  for (const Violation& v : r.violations) EXPECT_EQ(v.invariant, c.code) << c.name << ": " << to_string(v);
+}
+
+INSTANTIATE_TEST_SUITE_P(Geometry, BrokenGeometry, ::testing::ValuesIn(geometry_cases()),
+                         [](const auto& info) { return info.param.name; });
+
+// Every code in the spec's geometric table has a case above.
+TEST(GeometryCheck, EverySpecCodeHasABreakingCase) {
+  std::set<std::string> have;
+  for (const GeometryCase& c : geometry_cases()) have.insert(c.code);
+  std::set<std::string> spec = test::spec_codes(KINTSUGI_SPEC_DIR "/invariants.md", "## Geometric consistency", "");
+  EXPECT_FALSE(spec.empty());
+  for (const std::string& code : spec) EXPECT_TRUE(have.count(code)) << code << " has no case that breaks it alone";
+  for (const std::string& code : have) EXPECT_TRUE(spec.count(code)) << code << " is not in spec/invariants.md";
 }
 
 }  // namespace

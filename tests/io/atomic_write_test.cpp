@@ -8,8 +8,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/resource.h>
 #include <unistd.h>
+
 #include <algorithm>
+#include <csignal>
 
 namespace kintsugi::io {
 namespace {
@@ -110,16 +113,37 @@ TEST_F(AtomicWrite, RefusesAPathWithoutAFileName) {
   EXPECT_TRUE(files().empty());
 }
 
-TEST_F(AtomicWrite, FailsCleanlyInAReadOnlyDirectory) {
-  if (::geteuid() == 0) GTEST_SKIP() << "root ignores directory permissions";
-  fs::create_directory(path("ro"));
-  ASSERT_TRUE(write_file_atomically(path("ro/out.json"), "old", nullptr));
-  fs::permissions(path("ro"), fs::perms::owner_read | fs::perms::owner_exec);
+// The failures below are ones root cannot bypass (CI runs as root, which ignores
+// directory permissions): a parent that is a regular file, and a file-size limit.
+
+TEST_F(AtomicWrite, FailsCleanlyWhenTheDirectoryIsAFile) {
   std::string error;
-  EXPECT_FALSE(write_file_atomically(path("ro/out.json"), "new", &error));
-  fs::permissions(path("ro"), fs::perms::owner_all);
-  EXPECT_EQ(contents(path("ro/out.json")), "old");
-  EXPECT_EQ(fs::directory_iterator(path("ro"))->path().filename(), "out.json");
+  ASSERT_TRUE(write_file_atomically(path("plain"), "old", &error)) << error;
+  EXPECT_FALSE(write_file_atomically(path("plain/out.json"), "new", &error));
+  EXPECT_NE(error.find("cannot create a temporary file"), std::string::npos) << error;
+  EXPECT_NE(error.find("Not a directory"), std::string::npos) << error;
+  EXPECT_EQ(contents(path("plain")), "old");
+  EXPECT_EQ(files(), std::vector<std::string>{"plain"});
+}
+
+// RLIMIT_FSIZE applies to root too: the write of the temporary file fails half-way
+// (EFBIG), and the existing target must keep its old contents with no temporary left.
+TEST_F(AtomicWrite, FailsCleanlyWhenTheWriteFails) {
+  std::string error;
+  ASSERT_TRUE(write_file_atomically(path("out.json"), "old", &error)) << error;
+  struct rlimit saved;
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  void (*saved_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);  // else the process is killed
+  struct rlimit small = saved;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const bool written = write_file_atomically(path("out.json"), std::string(1 << 20, 'x'), &error);
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, saved_handler);
+  EXPECT_FALSE(written);
+  EXPECT_NE(error.find("cannot write"), std::string::npos) << error;
+  EXPECT_EQ(contents(path("out.json")), "old");
+  EXPECT_EQ(files(), std::vector<std::string>{"out.json"});
 }
 
 TEST_F(AtomicWrite, WrittenDocumentReadsBack) {
