@@ -31,7 +31,7 @@ expect 2 "unknown verb" -- "$K" frobnicate
 contains "unknown verb" "unknown verb is named"
 # Every verb the top-level help lists is covered here; each verb's --help exits 0, shows
 # its usage line and names each of its options.
-verbs_here="generate check inject detect beautify demo convert measure"
+verbs_here="generate check inject detect beautify demo audit convert measure"
 "$K" --help >"$dir/top" 2>&1
 for verb in $(sed -n 's/^  \([a-z]\+\) .*/\1/p' "$dir/top"); do
   case " $verbs_here " in *" $verb "*) pass=$((pass + 1)) ;; *) fail=$((fail + 1)); echo "FAIL: verb $verb has no tests here" ;; esac
@@ -44,6 +44,7 @@ options_of() {  # one per line
     detect) printf '%s\n' "--tol T" "--json" ;;
     beautify) printf '%s\n' "--tol T" "-o OUT" "--report R.json" ;;
     demo) ;;
+    audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" ;;
     convert) printf '%s\n' "IN OUT" ;;
     measure) printf '%s\n' "--json" "--tol T" ;;
   esac
@@ -69,6 +70,10 @@ expect 2 "beautify without -o" -- "$K" beautify x.json
 contains "expected IN and -o OUT" "beautify without -o says so"
 expect 2 "demo with an argument" -- "$K" demo extra
 contains "no arguments expected" "demo with an argument says so"
+expect 2 "audit with an argument" -- "$K" audit extra
+contains "unexpected argument extra" "audit with an argument says so"
+expect 2 "audit an unknown pass" -- "$K" audit --pass crack
+contains "crack is not a problem type" "audit names the unknown pass"
 expect 2 "convert with one file" -- "$K" convert x.json
 contains "expected IN and OUT" "convert with one file says so"
 expect 2 "measure without a file" -- "$K" measure
@@ -193,6 +198,9 @@ done
 if grep -qE "crashed|DIFFERS|could not be built" "$dir/out"; then
   fail=$((fail + 1)); echo "FAIL: demo:"; grep -E "crashed|DIFFERS|could not be built" "$dir/out" | sed 's/^/    /'
 else pass=$((pass + 1)); fi
+
+# audit: one trial of one pass runs and finds no counterexample to the paper's order
+expect 0 "audit one trial" -- "$K" audit --trials 1 --pass short_edge --no-shrink
 
 # convert: JSON to JSON always; STEP and BREP when this build has OpenCASCADE
 expect 0 "convert json to json" -- "$K" convert "$dir/torus.json" "$dir/torus2.json"
