@@ -238,7 +238,7 @@ KnownDefect scan_gap_on_edge(Body& b, EdgeH e, const MissingRegion& r, int per_s
   // A path through the face from origin(m) to target(m) along pts; returns the face cut off.
   auto path = [&](HalfedgeH m, const std::vector<Vec3>& pts) {
     Corner at = Corner::before(m);
-    HalfedgeH back, first;
+    HalfedgeH back;
     std::vector<HalfedgeH> made;
     for (int j = 1; j < per_side; ++j) {
       MevResult s = must(euler::mev(b, at, pts[std::size_t(j * kSamples)]), "mev (scan gap)");
