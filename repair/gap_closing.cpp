@@ -336,13 +336,28 @@ GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerance
       // The new edge runs the way the kept runs ran: a from B to A, c from A to B.
       ok = ok && (pa.point - pb.point).dot(j[a] - j[(a + k - 1) % k]) > 0;
       ok = ok && (pb.point - pa.point).dot(j[c] - j[c - 1]) > 0;
-      double res = std::max(pa.residual, pb.residual);
+      // The faces that only touch the new edge's ends stay on the side of its middle where
+      // the rest of the gap's border is (the new edge is where the faces actually meet, not
+      // a crossing hidden behind them: for a convex corner, inside all their planes).
+      const geo::Vec3 mid = 0.5 * (pa.point + pb.point);
+      double crossing = 0;
+      for (std::size_t i = 0; i < k; ++i) {
+        if (i == a || i == c) continue;
+        const geo::Surface& s = b.surface(g.runs[i].face);
+        double ref = 0;
+        for (std::size_t q = 0; q < k; ++q)
+          if (q != i && q != (i + k - 1) % k) ref += geo::signed_distance(s, j[q]);
+        const double d = geo::signed_distance(s, mid);
+        crossing = std::max(crossing, ref < 0 ? d : -d);
+      }
+      // Fewest crossings first, then the smallest residual.
+      double res = std::max(pa.residual, pb.residual) + (crossing > tol.precision ? 1e6 * (1 + crossing) : 0.0);
       if (ok && res < best) {
         best = res;
         out.kind = GapClosure::two_vertices;
         out.keep = {a, c};
         out.points = {pa.point, pb.point};
-        out.residual = res;
+        out.residual = std::max(pa.residual, pb.residual);
       }
     }
   if (out.kind == GapClosure::two_vertices) return out;

@@ -139,6 +139,37 @@ TEST(Gaps, MissingSideIsFilledWithAPlane) {
   EXPECT_LE(test::two_sided_distance(b, clean, 1e-5).max(), 1e-9);
 }
 
+// Object 7's apex (four turned planes meeting in two points 0.3 apart) with a gap over
+// its short edge: at a tolerance below 0.3 the planes do not meet in one point, so the gap
+// closes into two vertices and an edge between the same two faces as before.
+TEST(Gaps, GapOverAShortEdgeClosesIntoTwoVerticesAndAnEdge) {
+  zoo::ZooModel m = zoo::paper_object(7, false);
+  Body& b = m.body;
+  const Body clean = b.clone();
+  EdgeH e;
+  for (EdgeH x : b.edges())
+    if ((b.point(b.origin(halfedge_of(x, 0))) - b.point(b.target(halfedge_of(x, 0)))).norm() < 1) e = x;
+  ASSERT_TRUE(e.valid());
+  const HalfedgeH h = halfedge_of(e, 0);
+  std::map<EdgeH, geo::Vec3> cut;
+  for (VertexH v : {b.origin(h), b.target(h)})
+    for (HalfedgeH o : b.outgoing(v))
+      if (edge_of(o) != e) {
+        geo::Vec3 p = b.point(v), q = b.point(b.target(o));
+        cut[edge_of(o)] = p + 2.0 * (q - p).normalized();
+      }
+  ASSERT_TRUE(euler::kev(b, h));
+  zoo::Truncation t = zoo::truncate_vertex(b, b.origin(h), [&](HalfedgeH o) { return cut.at(edge_of(o)); });
+  ASSERT_TRUE(euler::kfmb(b, t.face));
+  BeautifyReport r = beautify(b, tol_for(b, 0.05));
+  EXPECT_EQ(b.counts().faces, 5u) << describe(r);
+  EXPECT_EQ(b.counts().edges, 9u) << describe(r);
+  EXPECT_EQ(b.counts().vertices, 6u) << describe(r);
+  EXPECT_EQ(matches_clean(b, clean, 0.05), "") << describe(r);
+  ASSERT_FALSE(r.problems.empty());
+  EXPECT_EQ(r.problems[0].note, "two vertices and an edge") << describe(r);
+}
+
 // ---- the zoo ------------------------------------------------------------------------
 
 struct Base {
@@ -158,6 +189,40 @@ Body plate_with_boss() {
   return b;
 }
 
+// A unit box whose top front edge is rounded off by a cylinder (radius 0.5, axis along x)
+// through the two lines 0.2 from the edge: not tangent to the faces beside it, so the
+// corners where it meets the end faces are corners of two planes and a cylinder.
+Body box_with_rounded_edge() {
+  Body b = build::box(1, 1, 1);
+  FaceH top, front;
+  for (FaceH f : b.faces()) {
+    geo::Vec3 n = zoo::outward_normal(b, f);
+    if (n.z() > 0.5) top = f;
+    if (n.y() < -0.5) front = f;
+  }
+  EdgeH e;
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(top)))
+    if (b.face(twin(h)) == front) e = edge_of(h);
+  zoo::KnownDefect d = zoo::make::chamfer(b, e, top, 0.2, 0.2);
+  FaceH r(std::uint32_t(std::stoul(d.elements[0].substr(1))));
+  const geo::Vec3 l1(0, 0.2, 1), l2(0, 0, 0.8), mid = 0.5 * (l1 + l2), n = geo::Vec3(0, -1, 1).normalized();
+  const double c = 0.5 * (l1 - l2).norm(), radius = 0.5;
+  const geo::Vec3 axis = mid - std::sqrt(radius * radius - c * c) * n;
+  geo::Cylinder cyl;
+  cyl.frame.origin = axis;
+  cyl.frame.z = geo::Vec3::UnitX();
+  cyl.frame.x = (l1 - axis).normalized();
+  cyl.radius = (l1 - axis).norm();
+  b.set_surface(r, cyl, true);
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(r))) {
+    const geo::Vec3 p = b.point(b.origin(h)), q = b.point(b.target(h));
+    if (std::abs(p.x() - q.x()) > 1e-9) continue;  // a long edge: a line on the cylinder
+    const geo::Vec3 centre(p.x(), axis.y(), axis.z());
+    zoo::set_circle(b, h, centre, (p - centre).cross(q - centre));
+  }
+  return b;
+}
+
 const std::vector<Base>& bases() {
   static const std::vector<Base> s = {
       {"box", [] { return build::box(1, 1, 1); }},
@@ -169,6 +234,7 @@ const std::vector<Base>& bases() {
       {"sphere", [] { return build::sphere(1); }},
       {"torus", [] { return build::torus(3, 1); }},
       {"plate+boss", plate_with_boss},
+      {"rounded box", box_with_rounded_edge},
   };
   return s;
 }
