@@ -25,17 +25,6 @@ std::string fmt(double d) {
   return os.str();
 }
 
-LoopH parse_loop(const std::string& s) {
-  if (s.size() < 2 || s[0] != 'l') return LoopH{};
-  std::uint64_t v = 0;
-  for (std::size_t i = 1; i < s.size(); ++i) {
-    if (s[i] < '0' || s[i] > '9') return LoopH{};
-    v = v * 10 + std::uint64_t(s[i] - '0');
-    if (v >= 0xffffffffu) return LoopH{};
-  }
-  return LoopH(std::uint32_t(v));
-}
-
 bool on_border(const Body& b, EdgeH e) { return b.is_border(halfedge_of(e, 0)) || b.is_border(halfedge_of(e, 1)); }
 
 std::string refused(const char* op, const Error& e) { return std::string(op) + " refused: " + e.message; }
@@ -103,18 +92,14 @@ std::optional<geo::Sphere> sphere_guess(const std::vector<geo::Vec3>& pts) {
 
 VertexH Gap::junction(const Body& b, std::size_t i) const { return b.target(runs[i % runs.size()].edges.back()); }
 
-std::optional<Gap> find_gap(const Body& b, const std::vector<std::string>& elements, std::string* why) {
-  if (elements.empty()) {
-    *why = "no border cycle named";
-    return std::nullopt;
-  }
-  LoopH l = parse_loop(elements[0]);
+std::optional<Gap> find_gap(const Body& b, const Problem& p, std::string* why) {
+  LoopH l = p.first<LoopH>();
   if (!b.alive(l) || !b.is_border(l)) {
-    *why = "no longer present: " + elements[0] + " is no longer a border cycle";
+    *why = "no longer present: " + l.str() + " is no longer a border cycle";
     return std::nullopt;
   }
   std::set<FaceH> want;
-  for (std::size_t i = 1; i < elements.size(); ++i) want.insert(parse_face(elements[i]));
+  for (FaceH f : p.all<FaceH>()) want.insert(f);
   const std::vector<HalfedgeH> all = b.loop_halfedges(l);
   for (const auto& cycle : simple_cycles(b, all)) {
     std::set<FaceH> faces;
@@ -139,7 +124,7 @@ std::optional<Gap> find_gap(const Body& b, const std::vector<std::string>& eleme
     }
     return g;
   }
-  *why = elements[0] + " no longer bounds a gap across the faces named";
+  *why = l.str() + " no longer bounds a gap across the faces named";
   return std::nullopt;
 }
 

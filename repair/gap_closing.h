@@ -29,10 +29,10 @@ struct Gap {
   VertexH junction(const Body& b, std::size_t i) const;
 };
 
-// The gap the problem names, as the body is now: the problem's loop (elements[0]) split
-// into simple cycles, the cycle whose faces are the problem's (elements[1..]). nullopt with
-// *why when it is gone or changed.
-std::optional<Gap> find_gap(const Body& b, const std::vector<std::string>& elements, std::string* why);
+// The gap the problem names, as the body is now: the problem's border cycle split into
+// simple cycles, the cycle whose faces are the problem's. nullopt with *why when it is
+// gone or changed.
+std::optional<Gap> find_gap(const Body& b, const Problem& p, std::string* why);
 
 // Pass 1: removes a face gap lying inside its face (a ring whose other side is the gap):
 // kev along the cycle to one edge, kef of that edge, then the lone vertex left as a ring

@@ -10,9 +10,11 @@
 
 namespace kintsugi::detail {
 
+namespace {
+
 std::string repair_edge_gap(RepairCall& c) {
   std::string why;
-  auto g = find_gap(c.b, c.problem.elements, &why);
+  auto g = find_gap(c.b, c.problem, &why);
   if (!g) return why;
   if (g->runs.size() != 2)
     return "the gap's border changes face " + std::to_string(g->runs.size()) + " times, not twice";
@@ -20,4 +22,9 @@ std::string repair_edge_gap(RepairCall& c) {
   return collapse_gap(c, *g, {0, 1}, {a, b});
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(edge_gap) = {kintsugi::ProblemType::edge_gap, "edge gaps",
+                     "the gap becomes one edge between the two junctions, where the two faces meet",
+                     kintsugi::detail::repair_edge_gap};

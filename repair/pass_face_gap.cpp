@@ -7,9 +7,11 @@
 
 namespace kintsugi::detail {
 
+namespace {
+
 std::string repair_face_gap(RepairCall& c) {
   std::string why;
-  auto g = find_gap(c.b, c.problem.elements, &why);
+  auto g = find_gap(c.b, c.problem, &why);
   if (!g) return why;
   if (g->runs.size() != 1) return "the gap now lies across " + std::to_string(g->runs.size()) + " stretches of faces";
   if (!c.b.is_outer(c.b.loop(twin(g->cycle[0])))) return remove_hole(c, *g);
@@ -19,4 +21,9 @@ std::string repair_face_gap(RepairCall& c) {
   return why;
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(face_gap) = {kintsugi::ProblemType::face_gap, "face gaps",
+                     "a hole inside a face is removed with its edges and vertices; the face covers it",
+                     kintsugi::detail::repair_face_gap};

@@ -10,9 +10,11 @@
 
 namespace kintsugi::detail {
 
+namespace {
+
 std::string repair_multi_face_gap(RepairCall& c) {
   std::string why;
-  auto g = find_gap(c.b, c.problem.elements, &why);
+  auto g = find_gap(c.b, c.problem, &why);
   if (!g) return why;
   if (g->runs.size() < 3) return "the gap now lies across fewer than three stretches of faces";
   GapClosure plan = plan_multi_face_gap(c.b, *g, c.tol);
@@ -34,4 +36,9 @@ std::string repair_multi_face_gap(RepairCall& c) {
   return "unknown closure";
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(multi_face_gap) = {kintsugi::ProblemType::multi_face_gap, "multiple-face gaps",
+                     "the faces around the gap are extended to where they meet: one vertex, two vertices and an edge, or a new face",
+                     kintsugi::detail::repair_multi_face_gap};

@@ -30,9 +30,10 @@ geo::Tolerances tol_for(const Body& b, double t) { return geo::Tolerances::for_m
 std::string describe(const BeautifyReport& r) {
   std::string s;
   for (const auto& p : r.problems) {
-    s += std::string(problem_name(p.type)) + " [";
-    for (const auto& e : p.elements) s += e + " ";
-    s += "] " + p.action + (p.reason.empty() ? "" : ": " + p.reason) + (p.note.empty() ? "" : " (" + p.note + ")") + "\n";
+    s += std::string(problem_name(p.problem.type)) + " [";
+    for (const auto& e : element_names(p.problem)) s += e + " ";
+    s += "] " + std::string(outcome_name(p.outcome)) + (p.reason.empty() ? "" : ": " + p.reason) +
+         (p.note.empty() ? "" : " (" + p.note + ")") + "\n";
   }
   return s;
 }
@@ -130,7 +131,7 @@ TEST(Gaps, MissingSideIsFilledWithAPlane) {
   geo::Tolerances tol = tol_for(b, 0.01);
   BeautifyReport r = beautify(b, tol);
   ASSERT_EQ(r.problems.size(), 1u) << describe(r);
-  EXPECT_EQ(r.problems[0].action, "repaired") << describe(r);
+  EXPECT_TRUE(r.problems[0].repaired()) << describe(r);
   EXPECT_NE(r.problems[0].note.find("plane"), std::string::npos) << describe(r);
   Counts c = b.counts(), k = clean.counts();
   EXPECT_EQ(c.faces, k.faces);
