@@ -47,8 +47,11 @@ double one_way(const std::vector<Point>& from, std::vector<Triangle>& to) {
   if (to.empty()) return HUGE_VAL;
   Tree tree(to.begin(), to.end());
   tree.accelerate_distance_queries();
+  // At most about 50000 points (every k-th): dense tessellations (a cone's apex) would
+  // make this the slowest part of a test.
+  const std::size_t step = std::max<std::size_t>(1, from.size() / 50000);
   double worst = 0;
-  for (const Point& p : from) worst = std::max(worst, std::sqrt(tree.squared_distance(p)));
+  for (std::size_t i = 0; i < from.size(); i += step) worst = std::max(worst, std::sqrt(tree.squared_distance(from[i])));
   return worst;
 }
 
