@@ -36,7 +36,7 @@ const std::string kHelp =
     "  --tol T          the length tolerance (else meta.tolerance, else 1e-3 x model size)\n"
     "  -o OUT           the repaired model\n"
     "  --report R.json  {\"tolerance\", \"problems\": [{\"type\", \"elements\", \"action\",\n"
-    "                   \"operators\", \"reason\", \"deviation\"}], \"counts_before\",\n"
+    "                   \"operators\", \"reason\", \"deviation\", \"note\"}], \"counts_before\",\n"
     "                   \"counts_after\", \"problems_before\", \"problems_after\",\n"
     "                   \"left\": [{\"type\", \"elements\"}] (what the output still has),\n"
     "                   \"max_deviation\", \"seconds\": {\"read\", \"beautify\", \"write\",\n"
@@ -109,7 +109,8 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
                                {"action", outcome_name(p.outcome)},
                                {"operators", p.operators},
                                {"reason", p.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.reason)},
-                               {"deviation", p.deviation}});
+                               {"deviation", p.deviation},
+                               {"note", p.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.note)}});
     j["counts_before"] = counts_json(r.counts_before);
     j["counts_after"] = counts_json(r.counts_after);
     j["problems_before"] = problem_counts(r.problems_before);
@@ -137,10 +138,10 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
       << ", edges " << r.counts_before.edges << " -> " << r.counts_after.edges << "; max deviation " << r.max_deviation
       << "\n";
   for (const RepairEntry& p : r.problems)
-    if (p.left()) {
-      out << "  not repaired: " << problem_name(p.problem.type) << " at";
+    if (p.left() || !p.note.empty()) {
+      out << (p.left() ? "  not repaired: " : "  repaired: ") << problem_name(p.problem.type) << " at";
       for (const auto& e : p.problem.elements) out << " " << element_name(e);
-      out << ": " << p.reason << "\n";
+      out << ": " << (p.left() ? p.reason : p.note) << "\n";
     }
   return kExitOk;
 }

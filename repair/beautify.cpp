@@ -65,10 +65,11 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
                     const Pass& pass, Touched& touched) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   Transaction tx(b);
-  std::string why;
+  std::string why, note;
   try {
     RepairContext call{b, p, tol, touched};
     why = pass.repair(call);
+    note = call.note;
     if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
   } catch (const std::exception& e) {
     why = std::string("geometry could not be computed: ") + e.what();
@@ -92,6 +93,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     return entry;
   }
   entry.operators = b.journal().op_names(tx.first_entry());
+  entry.note = note;
   tx.commit();
   entry.outcome = Outcome::repaired;
   return entry;

@@ -42,6 +42,7 @@ struct RepairEntry {
   std::vector<std::string> operators;  // journal op names of the committed repair
   std::string reason;                  // why not repaired (empty when repaired)
   double deviation = 0.0;              // largest geometric deviation left around the repair
+  std::string note = {};               // how it was repaired, where the pass says (e.g. a new face's surface)
 
   bool repaired() const { return outcome == Outcome::repaired; }
   bool left() const { return outcome == Outcome::refused || outcome == Outcome::no_pass; }

@@ -78,6 +78,10 @@ class DetectContext {
   mutable std::unordered_map<std::uint32_t, double> length_sparse_;
 };
 
+// A border cycle's half-edges split into simple cycles at repeated vertices: each is one
+// gap (paper 4.1, "fundamental cycles"); the gap passes find their gap again with it.
+std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vector<HalfedgeH>& hs);
+
 void detect_gaps(DetectContext& c, std::vector<Problem>& out);
 void detect_pinched(DetectContext& c, std::vector<Problem>& out);
 void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out);  // types 5, 6, 9

@@ -10,8 +10,6 @@
 
 namespace kintsugi::detail {
 
-namespace {
-
 // Splits the cyclic sequence of half-edges into simple cycles at repeated vertices.
 std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vector<HalfedgeH>& hs) {
   std::vector<std::vector<HalfedgeH>> out;
@@ -32,8 +30,6 @@ std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vect
   if (!stack.empty()) out.push_back(stack);
   return out;
 }
-
-}  // namespace
 
 void detect_gaps(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;

@@ -28,6 +28,7 @@ struct RepairContext {
   const Problem& problem;
   const geo::Tolerances& tol;
   Touched& touched;
+  std::string note = {};  // how the repair was made, for the report (e.g. a new face's surface kind)
 };
 
 using RepairFn = std::string (*)(RepairContext&);

@@ -7,6 +7,7 @@
 #include "invariants/topology_check.h"
 #include "kernel/transaction.h"
 #include "zoo/defects.h"
+#include "zoo/defects_gaps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,38 +107,17 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
   auto u = [&] { return rng.uniform(0.3, 0.8); };
   switch (t) {
     case ProblemType::face_gap:
-      for (FaceH f : faces) {
-        if (!convex_planar(b, f)) continue;
-        Vec3 c = centroid(b, f);
-        double r = 0.5 * tol * u();
-        if (inset(b, f, c) < 4 * r) continue;
-        int k = 3 + int(rng.below(4));
-        out.push_back({[=](Body& x) { return make::face_gap(x, f, c, r, k); }, f.str()});
-      }
-      break;
     case ProblemType::edge_gap:
-      for (EdgeH e : edges) {
-        HalfedgeH h = halfedge_of(e, 0);
-        FaceH f1 = b.face(h), f2 = b.face(twin(h));
-        if (!straight(b, e) || !f1.valid() || !f2.valid() || f1 == f2 || !convex_planar(b, f1) || !convex_planar(b, f2))
-          continue;
-        double len = edge_len(b, e), g = tol * u(), depth = 0.5 * tol * u();
-        if (len < 4 * g || inset(b, f1, centroid(b, f1)) < 4 * depth || inset(b, f2, centroid(b, f2)) < 4 * depth) continue;
-        double s0 = rng.uniform(0.3, 0.7) * (len - g);
-        int per_side = 1 + int(rng.below(3));
-        out.push_back({[=](Body& x) { return make::edge_gap(x, h, s0, s0 + g, depth, per_side); }, e.str()});
-      }
+    case ProblemType::multi_face_gap:  // made the way a scanner makes them: zoo/defects_gaps.cpp
+      for (GapSite& g : gap_sites(b, t, tol, rng, faces, edges, vertices)) out.push_back({std::move(g.make), g.where});
       break;
-    case ProblemType::multi_face_gap:
     case ProblemType::small_face:
     case ProblemType::small_face_chain:
       for (VertexH v : vertices) {
         if (!convex_corner_axis(b, v)) continue;
         std::uint64_t seed = rng.raw();
         double scale = u();
-        if (t == ProblemType::multi_face_gap)
-          out.push_back({[=](Body& x) { return make::corner_gap(x, v, 0.3 * tol * scale); }, v.str()});
-        else if (t == ProblemType::small_face)
+        if (t == ProblemType::small_face)
           out.push_back({[=](Body& x) {
                            Rng r(seed);
                            return make::small_face(x, v, 0.5 * tol * tol * scale, &r);

@@ -213,6 +213,16 @@ if "$K" convert --help | grep -q "STEP"; then
     expect 0 "check $ext with OpenCASCADE's verdict" -- "$K" check "$dir/cylinder.$ext" --occt
     contains "OpenCASCADE" "check --occt reports OpenCASCADE's verdict"
   done
+  # A STEP file with a gap (an open shell) comes out of beautify a closed solid that
+  # OpenCASCADE's checker accepts (passes 1-3).
+  for n in 1 2 3; do
+    expect 0 "generate paper-$n as STEP (an open shell)" -- "$K" generate "paper-$n" -o "$dir/gap$n.step"
+    expect 0 "beautify the STEP file with a gap" -- "$K" beautify "$dir/gap$n.step" --tol 0.5 -o "$dir/closed$n.step"
+    expect 0 "the repaired STEP file is valid" -- "$K" check "$dir/closed$n.step" --occt
+    contains "border cycles 0" "the repaired model is closed"
+    contains "OpenCASCADE BRepCheck: valid" "OpenCASCADE accepts the repaired solid"
+    contains "faces 6" "the repaired model is the cube"
+  done
   printf 'ISO-10303-21;\nHEADER;' >"$dir/trunc.step"
   expect 2 "convert a truncated STEP file" -- "$K" convert "$dir/trunc.step" "$dir/x.json"
 fi
