@@ -87,18 +87,27 @@ std::vector<geo::Vec3> trim(std::vector<geo::Vec3> pts, double len, bool from_st
   return out;
 }
 
-double distance(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b) {
-  if (a.empty() || b.empty()) return HUGE_VAL;
-  if (a.size() == 1) return b.size() == 1 ? (a[0] - b[0]).norm() : geo::point_polyline(a[0], b).distance;
-  if (b.size() == 1) return geo::point_polyline(b[0], a).distance;
-  return geo::polyline_polyline(a, b).distance;
+// Nearest points of two polylines (either may be a single point).
+geo::ClosestPair nearest(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b) {
+  geo::ClosestPair c;
+  c.distance = HUGE_VAL;
+  if (a.empty() || b.empty()) return c;
+  if (a.size() == 1 && b.size() == 1) return {(a[0] - b[0]).norm(), a[0], b[0]};
+  if (a.size() == 1) return geo::point_polyline(a[0], b);
+  if (b.size() == 1) {
+    c = geo::point_polyline(b[0], a);
+    std::swap(c.on_a, c.on_b);
+    return c;
+  }
+  return geo::polyline_polyline(a, b);
 }
 
-// One pair of edges of a face closer than the tolerance.
+// One pair of edges of a face closer than the tolerance, and where they are closest.
 struct ClosePair {
   double dist;
   HalfedgeH a, b;
   PinchLocation where;
+  geo::Vec3 on_a, on_b;
 };
 
 bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
@@ -170,8 +179,8 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       }
     }
     std::vector<ClosePair> pairs;
-    auto consider = [&](double d, HalfedgeH x, HalfedgeH y, PinchLocation where) {
-      if (d < t) pairs.push_back({d, x, y, where});
+    auto consider = [&](const geo::ClosestPair& c, HalfedgeH x, HalfedgeH y, PinchLocation where) {
+      if (c.distance < t) pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b});
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
     // bounded local density, however many rings (bosses) the face holds.
@@ -183,7 +192,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         // An inner loop close to the outer loop (or to another ring); loops touching at a
         // vertex are not compared.
         if (share_vertex(b, A.h, B.h)) continue;
-        consider(distance(A.poly, B.poly), A.h, B.h, PinchLocation::bossing);
+        consider(nearest(A.poly, B.poly), A.h, B.h, PinchLocation::bossing);
         continue;
       }
       const std::vector<double>& pre = prefix[A.loop];
@@ -208,14 +217,26 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         if (cut_b[x]) pb = trim(pb, t, x == 0);
       }
       bool joined = cut_a[0] || cut_a[1];
-      consider(distance(pa, pb), A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
+      consider(nearest(pa, pb), A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.
     for (const std::vector<std::size_t>& occ : occurrences(b, pairs)) {
       const ClosePair& best =
           pairs[*std::min_element(occ.begin(), occ.end(), [&](std::size_t i, std::size_t j) { return pairs[i].dist < pairs[j].dist; })];
-      bool straight = occ.size() == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
+      // Other pairs at the place count only where they come close away from the closest
+      // pair's corners: a block's side edges reach its base edge's ends, which bound the
+      // pinched stretch rather than lie along it (paper 4.2: "a single edge on either side").
+      auto at_corner = [&](const geo::Vec3& p) {
+        for (HalfedgeH h : {best.a, best.b})
+          for (VertexH v : {b.origin(h), b.target(h)})
+            if ((b.point(v) - p).norm() <= c.tol.precision) return true;
+        return false;
+      };
+      bool one_pair = true;
+      for (std::size_t i : occ)
+        if (&pairs[i] != &best && !at_corner(pairs[i].on_a) && !at_corner(pairs[i].on_b)) one_pair = false;
+      bool straight = one_pair && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
                       std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
       Problem p;
       p.type = ProblemType::pinched_face;
