@@ -142,9 +142,61 @@ std::string join_vertices(Body& b, HalfedgeH x, HalfedgeH y) {
   return "";
 }
 
+// Drops the stretch of arc length `len` at the start (or end) of a polyline.
+std::vector<geo::Vec3> trimmed(std::vector<geo::Vec3> pts, double len, bool from_start) {
+  if (!from_start) std::reverse(pts.begin(), pts.end());
+  std::vector<geo::Vec3> out;
+  double run = 0;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    double seg = (pts[i + 1] - pts[i]).norm();
+    if (run + seg > len) {
+      if (out.empty()) out.push_back(pts[i] + (pts[i + 1] - pts[i]) * ((len - run) / seg));
+      out.push_back(pts[i + 1]);
+    }
+    run += seg;
+  }
+  if (!from_start) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+// Whether consecutive half-edges p -> h of a loop still run beside each other away from
+// the vertex they share (closer than t once t is cut off each there).
+bool runs_beside(const Body& b, HalfedgeH p, HalfedgeH h, const geo::Tolerances& tol) {
+  auto a = trimmed(halfedge_polyline(b, p, tol.length * 0.01), tol.length, false);
+  auto c = trimmed(halfedge_polyline(b, h, tol.length * 0.01), tol.length, true);
+  if (a.size() < 2 || c.size() < 2) return false;
+  return geo::polyline_polyline(a, c).distance < tol.length;
+}
+
+std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched,
+                      std::vector<VertexH>* merged);
+
 }  // namespace
 
 std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched) {
+  std::vector<VertexH> merged;
+  std::string why = close_one(b, f, ea, eb, tol, touched, &merged);
+  // Several edges on a side (complex): the next edge of one side may still run beside
+  // the other side, now consecutive with it at a vertex just made (consecutive edges
+  // are never reported as pinched); zip on along it while it does.
+  for (int round = 0; why.empty() && round < 16 && !merged.empty(); ++round) {
+    VertexH v = merged.back();
+    merged.pop_back();
+    if (!b.alive(v)) continue;
+    for (HalfedgeH h : b.outgoing(v)) {
+      HalfedgeH p = b.prev(h);
+      if (!b.face(h).valid() || edge_of(p) == edge_of(h) || !runs_beside(b, p, h, tol)) continue;
+      why = close_one(b, b.face(h), edge_of(p), edge_of(h), tol, touched, &merged);
+      break;
+    }
+  }
+  return why;
+}
+
+namespace {
+
+std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched,
+                      std::vector<VertexH>* merged) {
   const double t = tol.length;
   if (!b.alive(f) || !b.alive(ea) || !b.alive(eb)) return "no longer present: removed by an earlier repair";
   HalfedgeH ha = side_in(b, ea, f), hb = side_in(b, eb, f);
@@ -327,8 +379,12 @@ std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Toleran
   why = place(b, {{v1, guess1}, {v2, guess2}}, tol, touched, {{f2}, {f1}, {}});
   touch_around(b, v1, touched);
   touch_around(b, v2, touched);
+  merged->push_back(v1);
+  merged->push_back(v2);
   return why;
 }
+
+}  // namespace
 
 std::string circle_contact_conflict(const Body& b, FaceH f, EdgeH ce, const geo::Tolerances& tol) {
   const auto* C = std::get_if<geo::Circle>(&b.curve(ce));

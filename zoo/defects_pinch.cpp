@@ -152,7 +152,15 @@ void pinch_spiking_clean(Body& b, HalfedgeH h, const PinchBlock& k, double depth
   b.set_surface(m.face, b.surface(f), b.same_sense(f));
   set_line(b, s.edge);
   set_line(b, m.edge);
+  const VertexH corner = b.origin(h);
   raise_flush(b, f, k.height * e.n, {mid0, mid1});
+  // The corner is left between the plate's and the block's vertical edges, on one line:
+  // they are one edge.
+  if (b.degree(corner) == 2) {
+    HalfedgeH in = twin(b.out(corner));
+    must(euler::jekv(b, in), "jekv (pinch)");
+    set_line(b, edge_of(in));
+  }
 }
 
 }  // namespace kintsugi::zoo::make
