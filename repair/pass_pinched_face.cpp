@@ -2,17 +2,27 @@
 // tolerance are made to meet (repair/pinch.h): zipped into one edge where they run side
 // by side, joined in one vertex at the narrowest place otherwise. Necking splits the
 // face, spiking drops the spike's short end, bossing joins the ring to the outer loop.
+// A pinch against a circle that would have to pass through more than three points not
+// on one circle is refused (paper Figure 32(b)).
 #include "repair/beautify_detail.h"
 #include "repair/pinch.h"
 
 namespace kintsugi::detail {
 
-std::string repair_pinched_face(RepairCall& c) {
-  if (c.problem.elements.size() < 3) return "the problem names no face and two edges";
-  FaceH f = parse_face(c.problem.elements[0]);
-  EdgeH a = parse_edge(c.problem.elements[1]), e = parse_edge(c.problem.elements[2]);
-  if (!f.valid() || !a.valid() || !e.valid()) return "the problem's elements are not a face and two edges";
-  return close_pinch(c.b, f, a, e, c.tol, c.touched);
+namespace {
+
+std::string repair_pinched_face(RepairContext& c) {
+  FaceH f = c.problem.first<FaceH>();
+  std::vector<EdgeH> sides = c.problem.all<EdgeH>();
+  if (!f.valid() || sides.size() != 2) return "the problem is not a face and two edges";
+  return close_pinch(c.b, f, sides[0], sides[1], c.tol, c.touched);
 }
 
+}  // namespace
 }  // namespace kintsugi::detail
+
+KINTSUGI_PASS(pinched_face) = {kintsugi::ProblemType::pinched_face, "pinched faces",
+                               "the two sides of the pinch meet: along one edge where they run side by side, "
+                               "else in one vertex; necking splits the face, spiking drops the spike, bossing "
+                               "joins the ring to the outer loop",
+                               kintsugi::detail::repair_pinched_face};

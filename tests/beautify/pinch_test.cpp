@@ -29,9 +29,9 @@ geo::Tolerances tol_for(const Body& b) { return geo::Tolerances::for_model(kTol,
 std::string describe(const BeautifyReport& r) {
   std::string s;
   for (const auto& p : r.problems) {
-    s += std::string(problem_name(p.type)) + " [";
-    for (const auto& e : p.elements) s += e + " ";
-    s += "] " + p.action + (p.reason.empty() ? "" : ": " + p.reason) + "\n";
+    s += std::string(problem_name(p.problem.type)) + " [";
+    for (const auto& e : element_names(p.problem)) s += e + " ";
+    s += "] " + std::string(outcome_name(p.outcome)) + (p.reason.empty() ? "" : ": " + p.reason) + "\n";
   }
   return s;
 }
@@ -95,7 +95,7 @@ void check_case(Where w, bool kink, double off0, double off1) {
   geo::Tolerances tol = tol_for(bad);
   std::vector<Problem> found = pinches(bad, tol);
   ASSERT_FALSE(found.empty()) << label;
-  EXPECT_EQ(found[0].subcase, std::string(name(w)) + (kink ? "/complex" : "/straight")) << label;
+  EXPECT_EQ(subcase_name(found[0]), std::string(name(w)) + (kink ? "/complex" : "/straight")) << label;
   EXPECT_TRUE(detect(good, tol).problems.empty()) << label << ": the clean model has problems";
   BeautifyReport r = beautify(bad, tol);
   EXPECT_TRUE(check_topology(bad).empty()) << label << "\n" << describe(r);
@@ -143,8 +143,8 @@ TEST(Pinch, PinchesOfPaperObjects8And10AreRepaired) {
     BeautifyReport r = beautify(m.body, tol);
     int repaired = 0;
     for (const RepairEntry& e : r.problems)
-      if (e.type == ProblemType::pinched_face) {
-        EXPECT_EQ(e.action, "repaired") << "object " << n << ": " << e.reason;
+      if (e.problem.type == ProblemType::pinched_face) {
+        EXPECT_TRUE(e.repaired()) << "object " << n << ": " << e.reason;
         ++repaired;
       }
     EXPECT_EQ(repaired, n == 8 ? 1 : 2) << "object " << n << "\n" << describe(r);
@@ -171,8 +171,8 @@ TEST(Pinch, CylinderPinchedInFourPlacesIsRefusedAndTheBodyUnchanged) {
   BeautifyReport rep = beautify(b, tol);
   bool refused = false;
   for (const RepairEntry& e : rep.problems)
-    if (e.type == ProblemType::pinched_face) {
-      EXPECT_EQ(e.action, "not repaired");
+    if (e.problem.type == ProblemType::pinched_face) {
+      EXPECT_EQ(e.outcome, Outcome::refused);
       EXPECT_NE(e.reason.find("Figure 32(b)"), std::string::npos) << e.reason;
       EXPECT_NE(e.reason.find("4 vertices on that one circle"), std::string::npos) << e.reason;
       EXPECT_NE(e.reason.find("fixed by three points"), std::string::npos) << e.reason;
@@ -195,13 +195,13 @@ TEST(Pinch, CylinderAlmostFlushWithOneSideMeetsItInAVertex) {
   geo::Tolerances tol = tol_for(b);
   std::vector<Problem> found = pinches(b, tol);
   ASSERT_EQ(found.size(), 1u);
-  EXPECT_EQ(found[0].subcase, "bossing/complex");
+  EXPECT_EQ(subcase_name(found[0]), "bossing/complex");
   Counts before = b.counts();
   Body original = b;
   BeautifyReport rep = beautify(b, tol);
   EXPECT_TRUE(check_topology(b).empty()) << describe(rep);
   ASSERT_FALSE(rep.problems.empty());
-  EXPECT_EQ(rep.problems[0].action, "repaired") << describe(rep);
+  EXPECT_TRUE(rep.problems[0].repaired()) << describe(rep);
   // The ring joined the outer loop: one loop fewer, one vertex more on the circle.
   EXPECT_EQ(b.counts().loops + 1, before.loops) << describe(rep);
   EXPECT_LE(test::two_sided_distance(b, original, 0.25), kTol);
