@@ -108,7 +108,18 @@ struct ClosePair {
   HalfedgeH a, b;
   PinchLocation where;
   geo::Vec3 on_a, on_b;
+  double parallel = 0;  // |cos| of the angle between the edges where they are closest
 };
+
+// |cos| of the angle between the segments of a and b where c found them closest (0 where
+// either is a single point).
+double parallelism(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b, const geo::ClosestPair& c) {
+  if (a.size() < 2 || b.size() < 2) return 0;
+  std::size_t i = std::min(c.segment_a, a.size() - 2), j = std::min(c.segment_b, b.size() - 2);
+  geo::Vec3 u = a[i + 1] - a[i], v = b[j + 1] - b[j];
+  double n = u.norm() * v.norm();
+  return n > 0 ? std::abs(u.dot(v)) / n : 0;
+}
 
 bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
   return b.origin(x) == b.origin(y) || b.origin(x) == b.target(y) || b.target(x) == b.origin(y) ||
@@ -179,8 +190,10 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       }
     }
     std::vector<ClosePair> pairs;
-    auto consider = [&](const geo::ClosestPair& c, HalfedgeH x, HalfedgeH y, PinchLocation where) {
-      if (c.distance < t) pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b});
+    auto consider = [&](const std::vector<geo::Vec3>& pa, const std::vector<geo::Vec3>& pb, HalfedgeH x, HalfedgeH y,
+                        PinchLocation where) {
+      geo::ClosestPair c = nearest(pa, pb);
+      if (c.distance < t) pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b, parallelism(pa, pb, c)});
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
     // bounded local density, however many rings (bosses) the face holds.
@@ -192,7 +205,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         // An inner loop close to the outer loop (or to another ring); loops touching at a
         // vertex are not compared.
         if (share_vertex(b, A.h, B.h)) continue;
-        consider(nearest(A.poly, B.poly), A.h, B.h, PinchLocation::bossing);
+        consider(A.poly, B.poly, A.h, B.h, PinchLocation::bossing);
         continue;
       }
       const std::vector<double>& pre = prefix[A.loop];
@@ -217,13 +230,18 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         if (cut_b[x]) pb = trim(pb, t, x == 0);
       }
       bool joined = cut_a[0] || cut_a[1];
-      consider(nearest(pa, pb), A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
+      consider(pa, pb, A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.
     for (const std::vector<std::size_t>& occ : occurrences(b, pairs)) {
-      const ClosePair& best =
-          pairs[*std::min_element(occ.begin(), occ.end(), [&](std::size_t i, std::size_t j) { return pairs[i].dist < pairs[j].dist; })];
+      // Equally close pairs (a block's base edge and its side edge, both closest at their
+      // common corner): the one that runs along the other side is where the pinch is.
+      auto closer = [&](std::size_t i, std::size_t j) {
+        if (std::abs(pairs[i].dist - pairs[j].dist) > c.tol.precision) return pairs[i].dist < pairs[j].dist;
+        return pairs[i].parallel > pairs[j].parallel;
+      };
+      const ClosePair& best = pairs[*std::min_element(occ.begin(), occ.end(), closer)];
       // Other pairs at the place count only where they come close away from the closest
       // pair's corners: a block's side edges reach its base edge's ends, which bound the
       // pinched stretch rather than lie along it (paper 4.2: "a single edge on either side").

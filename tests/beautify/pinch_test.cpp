@@ -56,7 +56,7 @@ enum class Where { necking, spiking, bossing };
 const char* name(Where w) { return w == Where::necking ? "necking" : w == Where::spiking ? "spiking" : "bossing"; }
 
 // The defective and the clean model of one case: offsets off0, off1 in [0.1, 0.3] t; a
-// kinked near side bends out to 0.4 t in the middle (farther than its ends, so the
+// kinked near side bends out 0.1 t farther than its ends in the middle (so the
 // closest pair is at one end and the other near edge is close elsewhere: complex).
 std::pair<Body, Body> make_case(Where w, bool kink, double off0, double off1) {
   Plate bad, good;
@@ -64,16 +64,16 @@ std::pair<Body, Body> make_case(Where w, bool kink, double off0, double off1) {
   k.off0 = off0;
   k.off1 = off1;
   k.kink = kink;
-  k.kink_bump = 0.4 * kTol - (off0 + off1) / 2;
+  k.kink_bump = std::max(off0, off1) + 0.1 * kTol - (off0 + off1) / 2;
   k.height = 3;
   switch (w) {
     case Where::bossing:
-      k.s0 = 6, k.s1 = 14;
+      k.s0 = 2, k.s1 = 18;
       zoo::make::pinch_bossing(bad.b, bad.front(), k, 5);
       zoo::add_flush_block(good.b, good.front(), k.s0, k.s1, std::max(off0, off1) + 5, k.height);
       break;
     case Where::necking:
-      k.s0 = 8, k.s1 = 12;
+      k.s0 = 4, k.s1 = 16;
       zoo::make::pinch_necking(bad.b, bad.front(), k, 12);
       zoo::make::pinch_necking_clean(good.b, good.front(), k, 12);
       break;
@@ -101,6 +101,11 @@ void check_case(Where w, bool kink, double off0, double off1) {
   EXPECT_TRUE(check_topology(bad).empty()) << label << "\n" << describe(r);
   EXPECT_TRUE(pinches(bad, tol).empty()) << label << "\n" << describe(r);
   Counts c = bad.counts(), want = good.counts();
+  for (const Problem& p : detect(bad, tol).problems) {
+    std::string e;
+    for (auto& n : element_names(p)) e += n + " ";
+    ADD_FAILURE() << label << ": left " << problem_name(p.type) << " " << e << p.measure;
+  }
   EXPECT_EQ(c.faces, want.faces) << label << "\n" << describe(r);
   EXPECT_EQ(c.edges, want.edges) << label << "\n" << describe(r);
   EXPECT_EQ(c.vertices, want.vertices) << label << "\n" << describe(r);
