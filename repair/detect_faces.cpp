@@ -261,7 +261,12 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       p.elements = {f, edge_of(best.a), edge_of(best.b)};
       p.measure = best.dist;
       p.measure_kind = Measure::distance;
+      // A place that reaches a short stretch is a spike even where its closest pair is
+      // not the one joined by it (several edges on a side: the paper ignores "the edges
+      // taking part in the pinching" when it measures the sequences either side).
       p.subcase.location = best.where;
+      for (std::size_t i : occ)
+        if (pairs[i].where == PinchLocation::spiking) p.subcase.location = PinchLocation::spiking;
       p.subcase.configuration = straight ? PinchConfiguration::straight : PinchConfiguration::complex;
       out.push_back(std::move(p));
     }

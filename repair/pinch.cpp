@@ -198,6 +198,37 @@ std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Toleran
 
 namespace {
 
+// The strip between mid_a and mid_b (their face, bounded by them and the short edges
+// joining their ends) is collapsed: the short edges by kev onto mid_a's vertices, then
+// the strip, two edges by then, killed across mid_b (kef): mid_a's edge lies between the
+// faces that were across the two sides (f1, f2). Its vertices go where the faces meet.
+std::string collapse_strip(Body& b, HalfedgeH mid_a, HalfedgeH mid_b, FaceH f1, FaceH f2, const geo::Vec3& guess1,
+                           const geo::Vec3& guess2, const geo::Tolerances& tol, Touched& touched,
+                           std::vector<VertexH>* merged) {
+  const FaceH strip = b.face(mid_a);
+  while (b.prev(mid_a) != mid_b) {
+    auto r = euler::kev(b, twin(b.prev(mid_a)));
+    if (!r) return refused("kev", r.error());
+  }
+  while (b.next(mid_a) != mid_b) {
+    auto r = euler::kev(b, b.next(mid_a));
+    if (!r) return refused("kev", r.error());
+  }
+  auto k = euler::kef(b, twin(mid_b));
+  if (!k) return refused("kef", k.error());
+  const VertexH v1 = b.origin(mid_a), v2 = b.target(mid_a);
+  touched.edges.insert(edge_of(mid_a));
+  touch_around(b, v1, touched);
+  touch_around(b, v2, touched);
+  (void)strip;
+  std::string why = place(b, {{v1, guess1}, {v2, guess2}}, tol, touched, {{f2}, {f1}, {}});
+  touch_around(b, v1, touched);
+  touch_around(b, v2, touched);
+  merged->push_back(v1);
+  merged->push_back(v2);
+  return why;
+}
+
 std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched,
                       std::vector<VertexH>* merged) {
   const double t = tol.length;
@@ -210,7 +241,16 @@ std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerance
   // Ends joined through a stretch shorter than t: a's end to b's start, b's end to a's start.
   const bool joined_a_end = one_loop && short_stretch(b, b.next(ha), hb, t).has_value();
   const bool joined_a_start = one_loop && short_stretch(b, b.next(hb), ha, t).has_value();
-  if (joined_a_end && joined_a_start) return f.str() + " is narrower than the tolerance everywhere: not a pinch";
+  if (joined_a_end && joined_a_start) {
+    // The face is nothing but the two sides and short stretches joining them: what is left
+    // of a spike after its pinch was closed further along (several edges on a side). It
+    // is the strip itself.
+    if (b.loops_of(f).size() != 1) return f.str() + " is narrower than the tolerance everywhere: not a pinch";
+    const geo::Vec3 g1 = (b.point(b.origin(ha)) + b.point(b.target(hb))) / 2;
+    const geo::Vec3 g2 = (b.point(b.target(ha)) + b.point(b.origin(hb))) / 2;
+    touched.faces.insert(f);
+    return collapse_strip(b, ha, hb, f1, f2, g1, g2, tol, touched, merged);
+  }
 
   Side A = sample(b, ha, tol), B = sample(b, hb, tol);
   std::vector<double> da(A.p.size()), db(B.p.size());
@@ -359,32 +399,7 @@ std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerance
   }
   if (!new_face || b.face(mid_a) != b.face(mid_b))
     return "no strip between " + ea.str() + " and " + eb.str() + " could be cut off " + f.str();
-  const FaceH strip = b.face(mid_a);
-  // Collapse the strip's ends (new edges and spike stretches) onto mid_a's vertices.
-  while (b.prev(mid_a) != mid_b) {
-    auto r = euler::kev(b, twin(b.prev(mid_a)));
-    if (!r) return refused("kev", r.error());
-  }
-  while (b.next(mid_a) != mid_b) {
-    auto r = euler::kev(b, b.next(mid_a));
-    if (!r) return refused("kev", r.error());
-  }
-  // The strip is a two-gon now: kill it across mid_b; mid_a's edge then lies between
-  // the faces that were across the two sides.
-  (void)strip;
-  auto k = euler::kef(b, twin(mid_b));
-  if (!k) return refused("kef", k.error());
-  const VertexH v1 = b.origin(mid_a), v2 = b.target(mid_a);
-  touched.edges.insert(edge_of(mid_a));
-  touch_around(b, v1, touched);
-  touch_around(b, v2, touched);
-  touched.faces.insert(f);
-  why = place(b, {{v1, guess1}, {v2, guess2}}, tol, touched, {{f2}, {f1}, {}});
-  touch_around(b, v1, touched);
-  touch_around(b, v2, touched);
-  merged->push_back(v1);
-  merged->push_back(v2);
-  return why;
+  return collapse_strip(b, mid_a, mid_b, f1, f2, guess1, guess2, tol, touched, merged);
 }
 
 }  // namespace
