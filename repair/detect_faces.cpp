@@ -221,9 +221,16 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       // length t off each edge there. No such end: necking.
       bool cut_a[2] = {l2 < t, l1 < t}, cut_b[2] = {l1 < t, l2 < t};  // [start, end]
       VertexH va[2] = {b.origin(A.h), b.target(A.h)}, vb[2] = {b.origin(B.h), b.target(B.h)};
+      bool touch = false;
       for (int x = 0; x < 2; ++x)
         for (int y = 0; y < 2; ++y)
-          if (va[x] == vb[y]) cut_a[x] = cut_b[y] = true;
+          if (va[x] == vb[y]) cut_a[x] = cut_b[y] = touch = true;
+      // A curved edge touching another side at a vertex the loop passes twice (a circle
+      // meeting a line where a pinch was closed, paper Figure 32(b)) leaves a cusp beside
+      // the vertex that stays narrower than t for a while: that is the contact itself.
+      if (touch && !(std::holds_alternative<geo::Line>(b.curve(edge_of(A.h))) &&
+                     std::holds_alternative<geo::Line>(b.curve(edge_of(B.h)))))
+        continue;
       std::vector<geo::Vec3> pa = A.poly, pb = B.poly;
       for (int x = 0; x < 2; ++x) {
         if (cut_a[x]) pa = trim(pa, t, x == 0);

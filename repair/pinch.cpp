@@ -16,8 +16,6 @@
 #include <optional>
 #include <set>
 #include <sstream>
-#include <cstdio>
-#include <cstdlib>
 
 namespace kintsugi::detail {
 
@@ -187,7 +185,6 @@ std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Toleran
     if (!b.alive(v)) continue;
     for (HalfedgeH h : b.outgoing(v)) {
       HalfedgeH p = b.prev(h);
-      if (getenv("PINCH_DEBUG")) fprintf(stderr, "at %s: %s -> %s in %s beside=%d\n", v.str().c_str(), edge_of(p).str().c_str(), edge_of(h).str().c_str(), b.face(h).str().c_str(), int(b.face(h).valid() && runs_beside(b, p, h, tol)));
       if (!b.face(h).valid() || edge_of(p) == edge_of(h) || !runs_beside(b, p, h, tol)) continue;
       why = close_one(b, b.face(h), edge_of(p), edge_of(h), tol, touched, &merged);
       break;
