@@ -202,7 +202,6 @@ namespace {
 std::string collapse_strip(Body& b, HalfedgeH mid_a, HalfedgeH mid_b, FaceH f1, FaceH f2, const geo::Vec3& guess1,
                            const geo::Vec3& guess2, const geo::Tolerances& tol, Touched& touched,
                            std::vector<VertexH>* merged) {
-  const FaceH strip = b.face(mid_a);
   while (b.prev(mid_a) != mid_b) {
     auto r = euler::kev(b, twin(b.prev(mid_a)));
     if (!r) return refused("kev", r.error());
@@ -217,7 +216,6 @@ std::string collapse_strip(Body& b, HalfedgeH mid_a, HalfedgeH mid_b, FaceH f1, 
   touched.edges.insert(edge_of(mid_a));
   touch_around(b, v1, touched);
   touch_around(b, v2, touched);
-  (void)strip;
   std::string why = place(b, {{v1, guess1}, {v2, guess2}}, tol, touched, {{f2}, {f1}, {}});
   touch_around(b, v1, touched);
   touch_around(b, v2, touched);
