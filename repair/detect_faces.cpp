@@ -87,19 +87,39 @@ std::vector<geo::Vec3> trim(std::vector<geo::Vec3> pts, double len, bool from_st
   return out;
 }
 
-double distance(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b) {
-  if (a.empty() || b.empty()) return HUGE_VAL;
-  if (a.size() == 1) return b.size() == 1 ? (a[0] - b[0]).norm() : geo::point_polyline(a[0], b).distance;
-  if (b.size() == 1) return geo::point_polyline(b[0], a).distance;
-  return geo::polyline_polyline(a, b).distance;
+// Nearest points of two polylines (either may be a single point).
+geo::ClosestPair nearest(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b) {
+  geo::ClosestPair c;
+  c.distance = HUGE_VAL;
+  if (a.empty() || b.empty()) return c;
+  if (a.size() == 1 && b.size() == 1) return {(a[0] - b[0]).norm(), a[0], b[0]};
+  if (a.size() == 1) return geo::point_polyline(a[0], b);
+  if (b.size() == 1) {
+    c = geo::point_polyline(b[0], a);
+    std::swap(c.on_a, c.on_b);
+    return c;
+  }
+  return geo::polyline_polyline(a, b);
 }
 
-// One pair of edges of a face closer than the tolerance.
+// One pair of edges of a face closer than the tolerance, and where they are closest.
 struct ClosePair {
   double dist;
   HalfedgeH a, b;
   PinchLocation where;
+  geo::Vec3 on_a, on_b;
+  double parallel = 0;  // |cos| of the angle between the edges where they are closest
 };
+
+// |cos| of the angle between the segments of a and b where c found them closest (0 where
+// either is a single point).
+double parallelism(const std::vector<geo::Vec3>& a, const std::vector<geo::Vec3>& b, const geo::ClosestPair& c) {
+  if (a.size() < 2 || b.size() < 2) return 0;
+  std::size_t i = std::min(c.segment_a, a.size() - 2), j = std::min(c.segment_b, b.size() - 2);
+  geo::Vec3 u = a[i + 1] - a[i], v = b[j + 1] - b[j];
+  double n = u.norm() * v.norm();
+  return n > 0 ? std::abs(u.dot(v)) / n : 0;
+}
 
 bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
   return b.origin(x) == b.origin(y) || b.origin(x) == b.target(y) || b.target(x) == b.origin(y) ||
@@ -170,8 +190,10 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       }
     }
     std::vector<ClosePair> pairs;
-    auto consider = [&](double d, HalfedgeH x, HalfedgeH y, PinchLocation where) {
-      if (d < t) pairs.push_back({d, x, y, where});
+    auto consider = [&](const std::vector<geo::Vec3>& pa, const std::vector<geo::Vec3>& pb, HalfedgeH x, HalfedgeH y,
+                        PinchLocation where) {
+      geo::ClosestPair c = nearest(pa, pb);
+      if (c.distance < t) pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b, parallelism(pa, pb, c)});
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
     // bounded local density, however many rings (bosses) the face holds.
@@ -183,7 +205,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         // An inner loop close to the outer loop (or to another ring); loops touching at a
         // vertex are not compared.
         if (share_vertex(b, A.h, B.h)) continue;
-        consider(distance(A.poly, B.poly), A.h, B.h, PinchLocation::bossing);
+        consider(A.poly, B.poly, A.h, B.h, PinchLocation::bossing);
         continue;
       }
       const std::vector<double>& pre = prefix[A.loop];
@@ -199,30 +221,59 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       // length t off each edge there. No such end: necking.
       bool cut_a[2] = {l2 < t, l1 < t}, cut_b[2] = {l1 < t, l2 < t};  // [start, end]
       VertexH va[2] = {b.origin(A.h), b.target(A.h)}, vb[2] = {b.origin(B.h), b.target(B.h)};
+      bool touch = false;
       for (int x = 0; x < 2; ++x)
         for (int y = 0; y < 2; ++y)
-          if (va[x] == vb[y]) cut_a[x] = cut_b[y] = true;
+          if (va[x] == vb[y]) cut_a[x] = cut_b[y] = touch = true;
+      // A curved edge touching another side at a vertex the loop passes twice (a circle
+      // meeting a line where a pinch was closed, paper Figure 32(b)) leaves a cusp beside
+      // the vertex that stays narrower than t for a while: that is the contact itself.
+      if (touch && !(std::holds_alternative<geo::Line>(b.curve(edge_of(A.h))) &&
+                     std::holds_alternative<geo::Line>(b.curve(edge_of(B.h)))))
+        continue;
       std::vector<geo::Vec3> pa = A.poly, pb = B.poly;
       for (int x = 0; x < 2; ++x) {
         if (cut_a[x]) pa = trim(pa, t, x == 0);
         if (cut_b[x]) pb = trim(pb, t, x == 0);
       }
       bool joined = cut_a[0] || cut_a[1];
-      consider(distance(pa, pb), A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
+      consider(pa, pb, A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking);
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.
     for (const std::vector<std::size_t>& occ : occurrences(b, pairs)) {
-      const ClosePair& best =
-          pairs[*std::min_element(occ.begin(), occ.end(), [&](std::size_t i, std::size_t j) { return pairs[i].dist < pairs[j].dist; })];
-      bool straight = occ.size() == 1 && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
+      // Equally close pairs (a block's base edge and its side edge, both closest at their
+      // common corner): the one that runs along the other side is where the pinch is.
+      auto closer = [&](std::size_t i, std::size_t j) {
+        if (std::abs(pairs[i].dist - pairs[j].dist) > c.tol.precision) return pairs[i].dist < pairs[j].dist;
+        return pairs[i].parallel > pairs[j].parallel;
+      };
+      const ClosePair& best = pairs[*std::min_element(occ.begin(), occ.end(), closer)];
+      // Other pairs at the place count only where they come close away from the closest
+      // pair's corners: a block's side edges reach its base edge's ends, which bound the
+      // pinched stretch rather than lie along it (paper 4.2: "a single edge on either side").
+      auto at_corner = [&](const geo::Vec3& p) {
+        for (HalfedgeH h : {best.a, best.b})
+          for (VertexH v : {b.origin(h), b.target(h)})
+            if ((b.point(v) - p).norm() <= c.tol.precision) return true;
+        return false;
+      };
+      bool one_pair = true;
+      for (std::size_t i : occ)
+        if (&pairs[i] != &best && !at_corner(pairs[i].on_a) && !at_corner(pairs[i].on_b)) one_pair = false;
+      bool straight = one_pair && std::holds_alternative<geo::Line>(b.curve(edge_of(best.a))) &&
                       std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
       Problem p;
       p.type = ProblemType::pinched_face;
       p.elements = {f, edge_of(best.a), edge_of(best.b)};
       p.measure = best.dist;
       p.measure_kind = Measure::distance;
+      // A place that reaches a short stretch is a spike even where its closest pair is
+      // not the one joined by it (several edges on a side: the paper ignores "the edges
+      // taking part in the pinching" when it measures the sequences either side).
       p.subcase.location = best.where;
+      for (std::size_t i : occ)
+        if (pairs[i].where == PinchLocation::spiking) p.subcase.location = PinchLocation::spiking;
       p.subcase.configuration = straight ? PinchConfiguration::straight : PinchConfiguration::complex;
       out.push_back(std::move(p));
     }

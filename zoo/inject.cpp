@@ -8,6 +8,7 @@
 #include "kernel/transaction.h"
 #include "zoo/defects.h"
 #include "zoo/defects_gaps.h"
+#include "zoo/defects_pinch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -202,15 +203,18 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
         double room = inset(b, f, centroid(b, f));
         for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) {
           double len = edge_len(b, edge_of(h));
-          double offset = tol * u(), w = std::min(0.3 * room, 0.3 * len);
+          // Fitted a little tapered: the block's near side is off0..off1 inside h.
+          double offset = tol * u(), off1 = tol * u(), w = std::min(0.3 * room, 0.3 * len);
           if (w < 2 * tol) continue;
           double s0 = 0.35 * len, s1 = 0.65 * len;
           // The block must stay inside f: its far corners are checked against every edge.
           Vec3 p = b.point(b.origin(h)), d = (b.point(b.target(h)) - p).normalized();
           Vec3 uu = outward_normal(b, f).cross(d);
-          Vec3 c0 = p + s0 * d + (offset + w) * uu, c1 = p + s1 * d + (offset + w) * uu;
+          Vec3 c0 = p + s0 * d + (std::max(offset, off1) + w) * uu, c1 = p + s1 * d + (std::max(offset, off1) + w) * uu;
           if (inset(b, f, c0) < tol || inset(b, f, c1) < tol) continue;
-          out.push_back({[=](Body& x) { return make::boss_pinch(x, h, s0, s1, offset, w, w); }, f.str()});
+          make::PinchBlock k;
+          k.s0 = s0, k.s1 = s1, k.off0 = offset, k.off1 = off1, k.height = w;
+          out.push_back({[=](Body& x) { return make::pinch_bossing(x, h, k, w); }, f.str()});
         }
       }
       break;

@@ -1,0 +1,225 @@
+// Pass 4, pinched faces (paper 4.2): each location (necking, spiking, bossing) in both
+// configurations (straight, complex) made the way reverse engineering makes it, repaired
+// to the clean model's counts and within tolerance of it both ways; the paper's object 5
+// (Table 2: 10 faces, 24 edges); the pinches of objects 8 and 10; and the unrealisable
+// case of its Figure 32(b), refused with the body unchanged.
+#include "invariants/element_geometry.h"
+#include "invariants/topology_check.h"
+#include "kernel/builders.h"
+#include "repair/beautify.h"
+#include "repair/detect.h"
+#include "tests/support/two_sided.h"
+#include "zoo/defects_pinch.h"
+#include "zoo/paper_build.h"
+#include "zoo/zoo.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+namespace kintsugi {
+namespace {
+
+using geo::Vec3;
+
+constexpr double kTol = 0.5;
+
+geo::Tolerances tol_for(const Body& b) { return geo::Tolerances::for_model(kTol, model_size(b)); }
+
+std::string describe(const BeautifyReport& r) {
+  std::string s;
+  for (const auto& p : r.problems) {
+    s += std::string(problem_name(p.problem.type)) + " [";
+    for (const auto& e : element_names(p.problem)) s += e + " ";
+    s += "] " + std::string(outcome_name(p.outcome)) + (p.reason.empty() ? "" : ": " + p.reason) + "\n";
+  }
+  return s;
+}
+
+std::vector<Problem> pinches(const Body& b, const geo::Tolerances& tol) {
+  std::vector<Problem> out;
+  for (const Problem& p : detect(b, tol).problems)
+    if (p.type == ProblemType::pinched_face) out.push_back(p);
+  return out;
+}
+
+// A 20 x 12 x 4 plate; the edge of its top face along the front, (0,0) -> (20,0).
+struct Plate {
+  Body b = build::box(20, 12, 4);
+  HalfedgeH front() const {
+    FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
+    return zoo::halfedge_in(b, top, Vec3(0, 0, 4), Vec3(20, 0, 4));
+  }
+};
+
+enum class Where { necking, spiking, bossing };
+const char* name(Where w) { return w == Where::necking ? "necking" : w == Where::spiking ? "spiking" : "bossing"; }
+
+// The defective and the clean model of one case: offsets off0, off1 in [0.1, 0.3] t; a
+// kinked near side bends out 0.1 t farther than its ends in the middle (so the
+// closest pair is at one end and the other near edge is close elsewhere: complex).
+std::pair<Body, Body> make_case(Where w, bool kink, double off0, double off1) {
+  Plate bad, good;
+  zoo::make::PinchBlock k;
+  k.off0 = off0;
+  k.off1 = off1;
+  k.kink = kink;
+  k.kink_bump = std::max(off0, off1) + 0.1 * kTol - (off0 + off1) / 2;
+  k.height = 3;
+  switch (w) {
+    case Where::bossing:
+      k.s0 = 2, k.s1 = 18;
+      zoo::make::pinch_bossing(bad.b, bad.front(), k, 5);
+      zoo::add_flush_block(good.b, good.front(), k.s0, k.s1, std::max(off0, off1) + 5, k.height);
+      break;
+    case Where::necking:
+      k.s0 = 4, k.s1 = 16;
+      zoo::make::pinch_necking(bad.b, bad.front(), k, 12);
+      zoo::make::pinch_necking_clean(good.b, good.front(), k, 12);
+      break;
+    case Where::spiking:
+      k.s0 = off0, k.s1 = 8;
+      zoo::make::pinch_spiking(bad.b, bad.front(), k, 6);
+      zoo::make::pinch_spiking_clean(good.b, good.front(), k, 6);
+      break;
+  }
+  return {std::move(bad.b), std::move(good.b)};
+}
+
+void check_case(Where w, bool kink, double off0, double off1) {
+  auto [bad, good] = make_case(w, kink, off0, off1);
+  const std::string label = std::string(name(w)) + (kink ? "/complex" : "/straight") + " off0=" +
+                            std::to_string(off0) + " off1=" + std::to_string(off1);
+  ASSERT_TRUE(check_topology(bad).empty()) << label;
+  ASSERT_TRUE(check_topology(good).empty()) << label;
+  geo::Tolerances tol = tol_for(bad);
+  std::vector<Problem> found = pinches(bad, tol);
+  ASSERT_FALSE(found.empty()) << label;
+  EXPECT_EQ(subcase_name(found[0]), std::string(name(w)) + (kink ? "/complex" : "/straight")) << label;
+  EXPECT_TRUE(detect(good, tol).problems.empty()) << label << ": the clean model has problems";
+  BeautifyReport r = beautify(bad, tol);
+  EXPECT_TRUE(check_topology(bad).empty()) << label << "\n" << describe(r);
+  EXPECT_TRUE(pinches(bad, tol).empty()) << label << "\n" << describe(r);
+  Counts c = bad.counts(), want = good.counts();
+  for (const Problem& p : detect(bad, tol).problems) {
+    std::string e;
+    for (auto& n : element_names(p)) e += n + " ";
+    ADD_FAILURE() << label << ": left " << problem_name(p.type) << " " << e << p.measure;
+  }
+  EXPECT_EQ(c.faces, want.faces) << label << "\n" << describe(r);
+  EXPECT_EQ(c.edges, want.edges) << label << "\n" << describe(r);
+  EXPECT_EQ(c.vertices, want.vertices) << label << "\n" << describe(r);
+  EXPECT_LE(test::two_sided_distance(bad, good, 0.25), kTol) << label << "\n" << describe(r);
+}
+
+TEST(Pinch, EachLocationAndConfigurationBecomesTheCleanModel) {
+  for (Where w : {Where::necking, Where::spiking, Where::bossing})
+    for (bool kink : {false, true}) check_case(w, kink, 0.1 * kTol, 0.3 * kTol);
+}
+
+RC_GTEST_PROP(Pinch, AnyOffsetBetweenATenthAndFourTenthsOfTheTolerance, ()) {
+  const Where w = *rc::gen::element(Where::necking, Where::spiking, Where::bossing);
+  const bool kink = *rc::gen::arbitrary<bool>();
+  const double off0 = kTol * (0.1 + 0.2 * *rc::gen::inRange(0, 1001) / 1000.0);
+  const double off1 = kTol * (0.1 + 0.2 * *rc::gen::inRange(0, 1001) / 1000.0);
+  check_case(w, kink, off0, off1);
+  RC_ASSERT(!::testing::Test::HasFailure());
+}
+
+TEST(Pinch, PaperObject5BecomesTenFacesAndTwentyFourEdges) {
+  zoo::ZooModel m = zoo::paper_object(5, false), clean = zoo::paper_object(5, true);
+  geo::Tolerances tol = tol_for(m.body);
+  BeautifyReport r = beautify(m.body, tol);
+  EXPECT_TRUE(check_topology(m.body).empty()) << describe(r);
+  EXPECT_EQ(m.body.counts().faces, 10u) << describe(r);
+  EXPECT_EQ(m.body.counts().edges, 24u) << describe(r);
+  EXPECT_EQ(m.body.counts().vertices, 16u) << describe(r);
+  EXPECT_TRUE(detect(m.body, tol).problems.empty()) << describe(r);
+  EXPECT_LE(test::two_sided_distance(m.body, clean.body, 0.25), m.tolerance) << describe(r);
+}
+
+// Objects 8 and 10 have gaps, slivers and small-face chains too, whose passes (1-3, 5,
+// 6) are not on this branch: here only their pinches are checked.
+TEST(Pinch, PinchesOfPaperObjects8And10AreRepaired) {
+  for (int n : {8, 10}) {
+    zoo::ZooModel m = zoo::paper_object(n, false);
+    geo::Tolerances tol = tol_for(m.body);
+    ASSERT_FALSE(pinches(m.body, tol).empty()) << "object " << n;
+    BeautifyReport r = beautify(m.body, tol);
+    int repaired = 0;
+    for (const RepairEntry& e : r.problems)
+      if (e.problem.type == ProblemType::pinched_face) {
+        EXPECT_TRUE(e.repaired()) << "object " << n << ": " << e.reason;
+        ++repaired;
+      }
+    EXPECT_EQ(repaired, n == 8 ? 1 : 2) << "object " << n << "\n" << describe(r);
+    EXPECT_TRUE(check_topology(m.body).empty()) << "object " << n;
+    EXPECT_TRUE(pinches(m.body, tol).empty()) << "object " << n << "\n" << describe(r);
+  }
+}
+
+// Figure 32(b): a cylinder on a block, its base circle 0.1-0.4 t from all four sides of
+// the block's top. Closing all four pinches would put four vertices on the circle, which
+// three points fix; these four are not on one circle.
+TEST(Pinch, CylinderPinchedInFourPlacesIsRefusedAndTheBodyUnchanged) {
+  const double r = 5, d[4] = {0.05, 0.1, 0.15, 0.075};  // gaps to x = 0, x = W, y = 0, y = D
+  const double W = 2 * r + d[0] + d[1], D = 2 * r + d[2] + d[3];
+  Body b = build::box(W, D, 4);
+  FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
+  const Vec3 centre(r + d[0], r + d[2], 4);
+  zoo::extrude_disc(b, zoo::add_circle_face(b, top, centre, r), Vec3(0, 0, 3), r, centre);
+  b.clear_journal();
+  ASSERT_TRUE(check_topology(b).empty());
+  geo::Tolerances tol = tol_for(b);
+  ASSERT_FALSE(pinches(b, tol).empty());
+  Body before = b;
+  BeautifyReport rep = beautify(b, tol);
+  bool refused = false;
+  for (const RepairEntry& e : rep.problems)
+    if (e.problem.type == ProblemType::pinched_face) {
+      EXPECT_EQ(e.outcome, Outcome::refused);
+      EXPECT_NE(e.reason.find("Figure 32(b)"), std::string::npos) << e.reason;
+      EXPECT_NE(e.reason.find("4 vertices on that one circle"), std::string::npos) << e.reason;
+      EXPECT_NE(e.reason.find("fixed by three points"), std::string::npos) << e.reason;
+      refused = true;
+    }
+  EXPECT_TRUE(refused) << describe(rep);
+  std::string why;
+  EXPECT_TRUE(b.equals(before, &why)) << why;
+}
+
+// The curved-versus-planar case on its own: the same cylinder near one side only (the
+// others far): the circle gets a vertex on the plate's edge, where the faces meet.
+TEST(Pinch, CylinderAlmostFlushWithOneSideMeetsItInAVertex) {
+  const double r = 4;
+  Body b = build::box(20, 12, 4);
+  FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
+  const Vec3 centre(10, r + 0.1, 4);
+  zoo::extrude_disc(b, zoo::add_circle_face(b, top, centre, r), Vec3(0, 0, 3), r, centre);
+  b.clear_journal();
+  geo::Tolerances tol = tol_for(b);
+  std::vector<Problem> found = pinches(b, tol);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(subcase_name(found[0]), "bossing/complex");
+  Counts before = b.counts();
+  BeautifyReport rep = beautify(b, tol);
+  EXPECT_TRUE(check_topology(b).empty()) << describe(rep);
+  ASSERT_FALSE(rep.problems.empty());
+  EXPECT_TRUE(rep.problems[0].repaired()) << describe(rep);
+  EXPECT_TRUE(pinches(b, tol).empty()) << describe(rep);
+  // The ring joined the outer loop: one loop fewer, one vertex more on the circle.
+  EXPECT_EQ(b.counts().loops + 1, before.loops) << describe(rep);
+  // The new vertex: on the plate's front edge line and within t of the circle.
+  VertexH v;
+  for (VertexH x : b.vertices())
+    if (std::abs(b.point(x).z() - 4) < 1e-9 && std::abs(b.point(x).y()) < kTol && std::abs(b.point(x).x() - 10) < kTol) v = x;
+  ASSERT_TRUE(v.valid());
+  EXPECT_LT(std::abs((b.point(v) - centre).head<2>().norm() - r), kTol);
+  // Not checked here: the two-sided distance. geo::measure_region cannot measure a
+  // cylinder face whose base circle is cut into two arcs ("a single loop winding around a
+  // cylinder does not bound a region"), with or without this repair, so the cylinder face
+  // has no tessellation to sample.
+}
+
+}  // namespace
+}  // namespace kintsugi
