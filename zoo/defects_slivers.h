@@ -1,0 +1,44 @@
+// Makers of slivers and of small-face chains along an edge (zoo/defects_slivers.cpp),
+// and the sites the injector offers for them.
+#pragma once
+
+#include "zoo/defects.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kintsugi::zoo {
+
+namespace make {
+
+// sliver_face: a chamfer plane along straight edge e (between planar faces A and B, both
+// ends of degree 3) cutting wa0 into A and wb0 into B at e's start and wa1 into A at its
+// end: wider at one end.
+KnownDefect tapered_chamfer(Body& b, EdgeH e, FaceH A, double wa0, double wb0, double wa1);
+
+// sliver_face: a cylindrical fillet of `radius` along e, tangent to A and B (material
+// taken off a convex edge, added to a concave one); the faces at e's ends must be square
+// to it (its ends are circular arcs). size = the fillet's width (arc length).
+KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius);
+
+// small_face_chain: a notch along convex edge e starting `s0` from its start (in A's
+// direction): an end wall, lengths.size() faces along the edge (the i-th cross section
+// cuts wa[i] into A; the first wb0 into B), an end wall. The chain has lengths.size() + 2
+// faces.
+KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double>& lengths,
+                  const std::vector<double>& wa, double wb0);
+
+}  // namespace make
+
+struct Maker {
+  std::function<KnownDefect(Body&)> make;
+  std::string where;
+};
+
+// Sliver sites on `edges` (a chamfer, a tapered chamfer or a fillet, 0.1-0.4 tol wide)
+// and notch sites for chains (3 to 5 faces), sizes drawn from rng.
+std::vector<Maker> sliver_makers(const Body& b, const std::vector<EdgeH>& edges, double tol, Rng& rng);
+std::vector<Maker> notch_makers(const Body& b, const std::vector<EdgeH>& edges, double tol, Rng& rng);
+
+}  // namespace kintsugi::zoo
