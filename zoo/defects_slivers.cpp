@@ -160,6 +160,46 @@ KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double
   return d;
 }
 
+KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
+  auto axis = convex_corner_axis(b, v);
+  std::vector<HalfedgeH> outs = b.outgoing(v);
+  if (!axis || outs.size() != 3) throw Unsuitable(v.str() + " is not a convex corner of three planar faces");
+  const Vec3 P = b.point(v);
+  std::vector<Vec3> dir;
+  for (HalfedgeH o : outs) {
+    if ((b.point(b.target(o)) - P).norm() < 3 * arm) throw Unsuitable("the arms do not fit at " + v.str());
+    dir.push_back(dir_of(b, o));
+  }
+  // Edge o_i runs between face(o_i) and face(o_{i+1}); face(o_i) holds o_{i-1} and o_i.
+  std::vector<VertexH> tips;
+  for (std::size_t i = 0; i < 3; ++i) tips.push_back(must(euler::semv(b, outs[i], P + arm * dir[i]), "semv (branched)").vertex);
+  std::vector<VertexH> made = tips;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::size_t j = (i + 2) % 3;  // o_{i-1}
+    FaceH f = b.face(outs[i]);
+    const double sine = dir[i].cross(dir[j]).norm();
+    const Vec3 k = P + (width / sine) * (dir[i] + dir[j]);
+    // A path tips[i] -> k -> tips[j] inside f cuts its corner at v off.
+    HalfedgeH after = b.next(outs[i]);  // leaves tips[i] in f
+    MevResult s = must(euler::mev(b, Corner::before(after), k), "mev (branched)");
+    MefResult m = must(euler::mef(b, Corner::before(s.y), Corner::before(twin(outs[j]))), "mef (branched)");
+    b.set_surface(m.face, b.surface(f), b.same_sense(f));
+    made.push_back(s.vertex);
+  }
+  // The three corner pieces become one face, and v goes.
+  must(euler::kef(b, outs[0]), "kef (branched)");
+  must(euler::kef(b, outs[1]), "kef (branched)");
+  FaceH sliver = b.face(outs[2]);
+  must(euler::kev(b, twin(outs[2])), "kev (branched)");
+  // Its plane holds the three tips; a Y cannot be planar (its inner corners lie on the
+  // faces around it, off that plane by about the width): only its measure uses it.
+  Vec3 n = (b.point(tips[1]) - b.point(tips[0])).cross(b.point(tips[2]) - b.point(tips[0]));
+  if (n.dot(*axis) < 0) n = -n;
+  set_plane(b, sliver, b.point(tips[0]), n.normalized());
+  refit_lines(b, made);
+  return {ProblemType::sliver_face, {sliver.str()}, width};
+}
+
 }  // namespace make
 }  // namespace kintsugi::zoo
 

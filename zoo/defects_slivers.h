@@ -29,6 +29,13 @@ KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius);
 KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double>& lengths,
                   const std::vector<double>& wa, double wb0);
 
+// sliver_face, branched (paper 7, Figure 32(a)): the three edges at convex corner v (three
+// planar faces) replaced near v by one Y-shaped face, `arm` long along each edge and
+// `width` into each face. Not consistent: its plane holds the three tips, but its inner
+// corners lie off it (a Y along three edges cannot be planar), so only tests that build
+// it on purpose use it, not the injector.
+KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width);
+
 }  // namespace make
 
 struct Maker {

@@ -152,6 +152,25 @@ RC_GTEST_PROP(SmallFaceChains, CornerChainIsRepaired, ()) {
   expect_repaired_to(clean, b, inj->description);
 }
 
+// Beyond the paper (section 7, Figure 32(a)): a Y-shaped sliver along the three edges at
+// a corner becomes three edges meeting in the corner.
+RC_GTEST_PROP(Slivers, BranchedSliverIsRepaired, ()) {
+  Body clean = convex_model();
+  Body b = clean.clone();
+  VertexH v = *rc::gen::elementOf(b.vertices());
+  const double arm = kTol * *rc::gen::inRange(120, 500) / 100.0;
+  const double width = kTol * *rc::gen::inRange(10, 40) / 100.0;
+  std::string what = "branched sliver at " + v.str() + " (arms " + std::to_string(arm) + ", width " + std::to_string(width) + ")";
+  {
+    Transaction tx(b);
+    zoo::make::branched_sliver(b, v, arm, width);
+    tx.commit();
+  }
+  Detection det = detect(b, tol_for(b, kTol));
+  RC_ASSERT(det.count(ProblemType::sliver_face) == 1);
+  expect_repaired_to(clean, b, what);
+}
+
 TEST(Slivers, PaperObject4BecomesTheCube) {
   zoo::ZooModel m = zoo::paper_object(4, false);
   zoo::ZooModel clean = zoo::paper_object(4, true);
