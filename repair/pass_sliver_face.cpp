@@ -17,10 +17,14 @@
 // Geometry: every vertex of the sequence or tree goes to where its faces now meet
 // (place_vertices, at most twice the tolerance from where it was), and every edge there
 // gets the curve where its two faces meet (derive_edge_curve).
-// May leave (Table 1, column 6): short edges and chains of them (the sliver's short ends
-// are kept as edges), adjacent faces with the same geometry, mergeable edges.
+// A vertex left on two edges between the same two faces (where the sliver's short end
+// edge now continues the edge beyond it) is joined away (jekv), so the sliver's ends do
+// not stay as short edges or mergeable vertices.
+// May leave (Table 1, column 6): short edges and chains of them, adjacent faces with the
+// same geometry.
 #include "geometry/meet_point.h"
 #include "invariants/element_geometry.h"
+#include "kernel/euler.h"
 #include "kernel/transaction.h"
 #include "repair/beautify_detail.h"
 #include "repair/face_collapse.h"
@@ -69,13 +73,28 @@ Tree path_edges(const std::vector<VertexH>& seq) {
   return t;
 }
 
-// Places the vertices of the collapsed sliver where their faces meet.
+// Places the vertices of the collapsed sliver where their faces meet. A vertex left on
+// two edges between the same two faces (an end of the sliver whose short end edge now
+// continues the edge beyond it) is joined away first: the paper's Table 1 has sliver
+// removal create no mergeable edges, and this is why.
 std::string place(RepairContext& c, const std::vector<VertexH>& vs) {
+  Body& b = c.b;
   std::vector<std::pair<VertexH, geo::Vec3>> guesses;
-  for (VertexH v : vs) guesses.push_back({v, c.b.point(v)});
-  for (VertexH v : vs)
-    for (FaceH g : faces_around(c.b, v)) c.touched.faces.insert(g);
-  return place_vertices(c.b, guesses, c.tol, 2 * c.tol.length, c.touched);
+  for (VertexH v : vs) {
+    auto outs = b.outgoing(v);
+    if (outs.size() == 2 && edge_of(outs[0]) != edge_of(outs[1])) {
+      auto pair = [&](HalfedgeH h) { return std::minmax(b.face(h), b.face(twin(h))); };
+      if (pair(outs[0]) == pair(outs[1])) {
+        auto r = euler::jekv(b, twin(outs[0]));
+        if (!r) return "jekv refused at " + v.str() + ": " + r.error().message;
+        continue;
+      }
+    }
+    guesses.push_back({v, b.point(v)});
+  }
+  for (auto [v, p] : guesses)
+    for (FaceH g : faces_around(b, v)) c.touched.faces.insert(g);
+  return place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched);
 }
 
 std::string unbranched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop) {

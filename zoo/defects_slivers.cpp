@@ -160,7 +160,19 @@ KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double
   return d;
 }
 
-KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
+}  // namespace make
+
+namespace {
+
+// The Y-shaped face that replaces the three edges at convex corner v near v: tips `arm`
+// along each edge, inner corners `width` inside both edges of each face.
+struct YFace {
+  FaceH face;
+  std::vector<VertexH> tips, inner;
+  Vec3 axis;
+};
+
+YFace y_face(Body& b, VertexH v, double arm, double width) {
   auto axis = convex_corner_axis(b, v);
   std::vector<HalfedgeH> outs = b.outgoing(v);
   if (!axis || outs.size() != 3) throw Unsuitable(v.str() + " is not a convex corner of three planar faces");
@@ -170,10 +182,10 @@ KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
     if ((b.point(b.target(o)) - P).norm() < 3 * arm) throw Unsuitable("the arms do not fit at " + v.str());
     dir.push_back(dir_of(b, o));
   }
+  YFace y;
+  y.axis = *axis;
   // Edge o_i runs between face(o_i) and face(o_{i+1}); face(o_i) holds o_{i-1} and o_i.
-  std::vector<VertexH> tips;
-  for (std::size_t i = 0; i < 3; ++i) tips.push_back(must(euler::semv(b, outs[i], P + arm * dir[i]), "semv (branched)").vertex);
-  std::vector<VertexH> made = tips;
+  for (std::size_t i = 0; i < 3; ++i) y.tips.push_back(must(euler::semv(b, outs[i], P + arm * dir[i]), "semv (Y)").vertex);
   for (std::size_t i = 0; i < 3; ++i) {
     const std::size_t j = (i + 2) % 3;  // o_{i-1}
     FaceH f = b.face(outs[i]);
@@ -181,23 +193,62 @@ KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
     const Vec3 k = P + (width / sine) * (dir[i] + dir[j]);
     // A path tips[i] -> k -> tips[j] inside f cuts its corner at v off.
     HalfedgeH after = b.next(outs[i]);  // leaves tips[i] in f
-    MevResult s = must(euler::mev(b, Corner::before(after), k), "mev (branched)");
-    MefResult m = must(euler::mef(b, Corner::before(s.y), Corner::before(twin(outs[j]))), "mef (branched)");
+    MevResult s = must(euler::mev(b, Corner::before(after), k), "mev (Y)");
+    MefResult m = must(euler::mef(b, Corner::before(s.y), Corner::before(twin(outs[j]))), "mef (Y)");
     b.set_surface(m.face, b.surface(f), b.same_sense(f));
-    made.push_back(s.vertex);
+    y.inner.push_back(s.vertex);
   }
   // The three corner pieces become one face, and v goes.
-  must(euler::kef(b, outs[0]), "kef (branched)");
-  must(euler::kef(b, outs[1]), "kef (branched)");
-  FaceH sliver = b.face(outs[2]);
-  must(euler::kev(b, twin(outs[2])), "kev (branched)");
+  must(euler::kef(b, outs[0]), "kef (Y)");
+  must(euler::kef(b, outs[1]), "kef (Y)");
+  y.face = b.face(outs[2]);
+  must(euler::kev(b, twin(outs[2])), "kev (Y)");
+  std::vector<VertexH> all = y.tips;
+  all.insert(all.end(), y.inner.begin(), y.inner.end());
+  refit_lines(b, all);
+  return y;
+}
+
+}  // namespace
+
+namespace make {
+
+KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
+  YFace y = y_face(b, v, arm, width);
   // Its plane holds the three tips; a Y cannot be planar (its inner corners lie on the
   // faces around it, off that plane by about the width): only its measure uses it.
-  Vec3 n = (b.point(tips[1]) - b.point(tips[0])).cross(b.point(tips[2]) - b.point(tips[0]));
-  if (n.dot(*axis) < 0) n = -n;
-  set_plane(b, sliver, b.point(tips[0]), n.normalized());
-  refit_lines(b, made);
-  return {ProblemType::sliver_face, {sliver.str()}, width};
+  const std::vector<VertexH>& t = y.tips;
+  Vec3 n = (b.point(t[1]) - b.point(t[0])).cross(b.point(t[2]) - b.point(t[0]));
+  if (n.dot(y.axis) < 0) n = -n;
+  set_plane(b, y.face, b.point(t[0]), n.normalized());
+  return {ProblemType::sliver_face, {y.face.str()}, width};
+}
+
+KnownDefect corner_network(Body& b, VertexH v, double arm, double width) {
+  YFace y = y_face(b, v, arm, width);
+  // Chords between the inner corners: a middle triangle and one triangle per arm.
+  std::vector<FaceH> faces{y.face};
+  for (std::size_t i = 0; i < 3; ++i) {
+    VertexH k1 = y.inner[i], k2 = y.inner[(i + 1) % 3];
+    bool done = false;
+    for (FaceH f : std::vector<FaceH>(faces)) {
+      HalfedgeH h1 = out_in_loop(b, k1, b.outer_loop(f)), h2 = out_in_loop(b, k2, b.outer_loop(f));
+      if (!h1.valid() || !h2.valid() || b.next(h1) == h2 || b.next(h2) == h1) continue;
+      MefResult m = must(euler::mef(b, Corner::before(h1), Corner::before(h2)), "mef (network)");
+      set_line(b, m.edge);
+      faces.push_back(m.face);
+      done = true;
+      break;
+    }
+    if (!done) throw std::logic_error("corner network: no face holds both inner corners");
+  }
+  KnownDefect d{ProblemType::small_face_chain, {}, 0.0};
+  for (FaceH f : faces) {
+    fit_plane(b, f);
+    d.elements.push_back(f.str());
+    d.size = std::max(d.size, polygon_area(loop_points(b, b.outer_loop(f))));
+  }
+  return d;
 }
 
 }  // namespace make

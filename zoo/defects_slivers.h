@@ -36,6 +36,12 @@ KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double
 // it on purpose use it, not the injector.
 KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width);
 
+// small_face_chain, a network (paper 7): the same Y split by chords between its inner
+// corners into a middle triangle and one triangle per arm, each on the plane through its
+// corners (consistent): four small faces whose adjacency is a star. arm and width small
+// enough that each is below tol².
+KnownDefect corner_network(Body& b, VertexH v, double arm, double width);
+
 }  // namespace make
 
 struct Maker {

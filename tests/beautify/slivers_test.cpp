@@ -6,6 +6,7 @@
 #include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
+#include "kernel/euler.h"
 #include "kernel/transaction.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
@@ -169,6 +170,68 @@ RC_GTEST_PROP(Slivers, BranchedSliverIsRepaired, ()) {
   Detection det = detect(b, tol_for(b, kTol));
   RC_ASSERT(det.count(ProblemType::sliver_face) == 1);
   expect_repaired_to(clean, b, what);
+}
+
+// Beyond the paper (section 7): a network of small faces at a corner (a middle face and
+// one face along each edge) becomes the corner and its three edges.
+RC_GTEST_PROP(SmallFaceChains, NetworkAtACornerIsRepaired, ()) {
+  Body clean = convex_model();
+  Body b = clean.clone();
+  VertexH v = *rc::gen::elementOf(b.vertices());
+  const double arm = kTol * *rc::gen::inRange(40, 90) / 100.0;
+  const double width = kTol * *rc::gen::inRange(10, 30) / 100.0;
+  std::string what = "network at " + v.str() + " (arms " + std::to_string(arm) + ", width " + std::to_string(width) + ")";
+  {
+    Transaction tx(b);
+    zoo::KnownDefect d = zoo::make::corner_network(b, v, arm, width);
+    RC_PRE(d.size < kTol * kTol);
+    tx.commit();
+  }
+  Detection det = detect(b, tol_for(b, kTol));
+  RC_ASSERT(det.count(ProblemType::small_face_chain) == 1);
+  RC_ASSERT(det.count(ProblemType::small_face) == 0);
+  expect_repaired_to(clean, b, what);
+}
+
+// A patch of small faces whose adjacency has a cycle (a corner cut into three triangles
+// around a middle point) is ambiguous: refused, with the reason, and the body left valid.
+TEST(SmallFaceChains, PatchWithACycleIsRefusedWithAReason) {
+  Body b = convex_model();
+  VertexH v = b.vertices()[0];
+  const geo::Vec3 p = b.point(v);
+  zoo::Truncation t = zoo::truncate_vertex(b, v, [&](HalfedgeH o) {
+    return geo::Vec3(p + 0.3 * kTol * (b.point(b.target(o)) - p).normalized());
+  });
+  geo::Vec3 mid = geo::Vec3::Zero();
+  for (VertexH w : t.corners) mid += b.point(w);
+  mid /= 3;
+  LoopH l = b.outer_loop(t.face);
+  MevResult s = *euler::mev(b, Corner::before(zoo::out_in_loop(b, t.corners[0], l)), mid);
+  // A chord from the middle point to corner w, in the face that holds both.
+  auto chord = [&](VertexH w) {
+    for (HalfedgeH h : b.outgoing(s.vertex)) {
+      HalfedgeH to = zoo::out_in_loop(b, w, b.loop(h));
+      if (to.valid() && b.face(h).valid()) {
+        ASSERT_TRUE(euler::mef(b, Corner::before(h), Corner::before(to)).ok());
+        return;
+      }
+    }
+    FAIL() << "no face holds the middle point and " << w.str();
+  };
+  chord(t.corners[1]);
+  chord(t.corners[2]);
+  for (FaceH f : zoo::faces_around(b, s.vertex)) zoo::fit_plane(b, f);
+  zoo::refit_lines(b, {s.vertex});
+  b.clear_journal();
+  Detection det = detect(b, tol_for(b, kTol));
+  ASSERT_EQ(det.count(ProblemType::small_face_chain), 1);
+  BeautifyReport r = beautify(b, tol_for(b, kTol));
+  EXPECT_TRUE(check_topology(b).empty());
+  bool refused = false;
+  for (const auto& e : r.problems)
+    if (e.problem.type == ProblemType::small_face_chain)
+      refused = !e.repaired() && e.reason.find("cycle") != std::string::npos;
+  EXPECT_TRUE(refused) << describe(r);
 }
 
 TEST(Slivers, PaperObject4BecomesTheCube) {
