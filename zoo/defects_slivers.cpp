@@ -119,7 +119,7 @@ KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double
   SemvResult s1 = must(euler::semv(b, f.hA, f.p + s0 * f.d), "semv (notch)");
   must(euler::semv(b, s1.next, f.p + at.back() * f.d), "semv (notch)");
   HalfedgeH mid = s1.next;  // in A, from the notch's start to its end
-  VertexH start = b.origin(mid), end = b.target(mid);
+  VertexH end = b.target(mid);
   cut_off(b, mid, pa);
   std::vector<Vec3> back(pb.rbegin(), pb.rend());
   cut_off(b, twin(mid), back);
