@@ -229,7 +229,10 @@ std::string repair_small_face_chain(RepairContext& c) {
         for (FaceH g : faces_around(b, w)) sw.push_back(b.surface(g));
         auto pv = geo::meet_point(sv, n.centroid[std::size_t(i)], c.tol.length, c.tol.precision);
         auto pw = geo::meet_point(sw, n.centroid[std::size_t(lab(w))], c.tol.length, c.tol.precision);
-        if ((pv.point - pw.point).norm() > 10 * c.tol.precision) continue;
+        auto met = [](const geo::MeetPoint& m) {
+          return m.status != geo::MeetStatus::no_point && m.status != geo::MeetStatus::degenerate;
+        };
+        if (!met(pv) || !met(pw) || (pv.point - pw.point).norm() > 10 * c.tol.precision) continue;
         auto r = euler::kev(b, h);
         if (!r) return "kev refused on " + edge_of(h).str() + ": " + r.error().message;
         kept.erase(w);

@@ -10,6 +10,7 @@
 #include "kernel/transaction.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/pass.h"
 #include "tests/support/model_distance.h"
 #include "zoo/defects_slivers.h"
 #include "zoo/paper_build.h"
@@ -245,8 +246,11 @@ TEST(Slivers, PaperObject4BecomesTheCube) {
 }
 
 // Objects 8-10 hold gaps and pinches too (passes 1-4); their slivers and chains are
-// repaired whatever those passes do.
+// repaired whatever those passes do, except object 10's sliver (8), which the corner gap
+// (5) reaches into: it goes once the gap is closed, and until a gap pass is registered it
+// is refused for that reason.
 TEST(Slivers, SliversAndChainsOfObjects8To10AreRepaired) {
+  const bool gaps_closed = find_pass(ProblemType::multi_face_gap) != nullptr;
   for (int n : {8, 9, 10}) {
     zoo::ZooModel m = zoo::paper_object(n, false);
     BeautifyReport r = beautify(m.body, tol_for(m.body, m.tolerance));
@@ -255,12 +259,15 @@ TEST(Slivers, SliversAndChainsOfObjects8To10AreRepaired) {
     for (const auto& p : r.problems)
       if (p.problem.type == ProblemType::sliver_face || p.problem.type == ProblemType::small_face_chain) {
         ++mine;
-        EXPECT_TRUE(p.repaired()) << "object " << n << "\n" << describe(r);
+        if (n == 10 && p.problem.type == ProblemType::sliver_face && !gaps_closed)
+          EXPECT_NE(p.reason.find("gap"), std::string::npos) << describe(r);
+        else
+          EXPECT_TRUE(p.repaired()) << "object " << n << "\n" << describe(r);
       }
     EXPECT_GE(mine, 1) << "object " << n;
     Detection d = detect(m.body, tol_for(m.body, m.tolerance));
-    EXPECT_EQ(d.count(ProblemType::sliver_face), 0) << "object " << n;
     EXPECT_EQ(d.count(ProblemType::small_face_chain), 0) << "object " << n;
+    if (n != 10 || gaps_closed) EXPECT_EQ(d.count(ProblemType::sliver_face), 0) << "object " << n;
   }
 }
 
