@@ -59,7 +59,7 @@ KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius) {
   Vec3 c = f.p + (s * radius / nb_ua) * f.uA + (s * radius / na_ub) * f.uB;
   Vec3 tA = c - s * radius * f.nA, tB = c - s * radius * f.nB;
   // Its ends are arcs: the faces at the edge's ends must be square to it.
-  for (HalfedgeH h : {b.next(twin(b.next(twin(f.hA)))), b.next(f.hA)}) {
+  for (HalfedgeH h : {b.next(twin(b.next(twin(f.hA)))), b.next(twin(b.next(f.hA)))}) {
     FaceH end = b.face(h);
     if (!end.valid() || !plane_of(b, end) || std::abs(outward_normal(b, end).dot(f.d)) < 1 - 1e-9)
       throw Unsuitable("the faces at the ends of " + e.str() + " are not square to it");
