@@ -162,7 +162,7 @@ RC_GTEST_PROP(Slivers, BranchedSliverIsRepaired, ()) {
   Body clean = convex_model();
   Body b = clean.clone();
   VertexH v = *rc::gen::elementOf(b.vertices());
-  const double arm = kTol * *rc::gen::inRange(200, 500) / 100.0;  // both below and above two tolerances
+  const double arm = kTol * *rc::gen::inRange(200, 500) / 100.0;  // 2-5 tolerances: a junction is needed
   const double width = kTol * *rc::gen::inRange(20, 40) / 100.0;
   std::string what = "branched sliver at " + v.str() + " (arms " + std::to_string(arm) + ", width " + std::to_string(width) + ")";
   {
