@@ -159,11 +159,11 @@ RC_GTEST_PROP(SmallFaceChains, CornerChainIsRepaired, ()) {
 // Beyond the paper (section 7, Figure 32(a)): a Y-shaped sliver along the three edges at
 // a corner becomes three edges meeting in the corner.
 RC_GTEST_PROP(Slivers, BranchedSliverIsRepaired, ()) {
-  Body clean = convex_model();
+  Body clean = build::box(12, 10, 8);
   Body b = clean.clone();
   VertexH v = *rc::gen::elementOf(b.vertices());
-  const double arm = kTol * *rc::gen::inRange(200, 500) / 100.0;  // 2-5 tolerances: a junction is needed
-  const double width = kTol * *rc::gen::inRange(20, 40) / 100.0;
+  const double arm = kTol * *rc::gen::inRange(300, 500) / 100.0;  // 3-5 tolerances: a junction is needed
+  const double width = kTol * *rc::gen::inRange(25, 40) / 100.0;
   std::string what = "branched sliver at " + v.str() + " (arms " + std::to_string(arm) + ", width " + std::to_string(width) + ")";
   {
     Transaction tx(b);
