@@ -85,7 +85,10 @@ std::string place(RepairContext& c, const std::vector<VertexH>& vs) {
     if (outs.size() == 2 && edge_of(outs[0]) != edge_of(outs[1])) {
       auto pair = [&](HalfedgeH h) { return std::minmax(b.face(h), b.face(twin(h))); };
       if (pair(outs[0]) == pair(outs[1])) {
-        auto r = euler::jekv(b, twin(outs[0]));
+        // The longer edge (the one beyond the sliver) keeps its handle: a problem at its
+        // far end keeps its identity.
+        HalfedgeH keep = edge_length(b, edge_of(outs[0])) >= edge_length(b, edge_of(outs[1])) ? outs[0] : outs[1];
+        auto r = euler::jekv(b, twin(keep));
         if (!r) return "jekv refused at " + v.str() + ": " + r.error().message;
         continue;
       }
