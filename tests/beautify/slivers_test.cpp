@@ -261,15 +261,18 @@ TEST(Slivers, SliversAndChainsOfObjects8To10AreRepaired) {
     for (const auto& p : r.problems)
       if (p.problem.type == ProblemType::sliver_face || p.problem.type == ProblemType::small_face_chain) {
         ++mine;
-        if (n == 10 && p.problem.type == ProblemType::sliver_face && !gaps_closed)
+        if (n == 10 && p.problem.type == ProblemType::sliver_face && !gaps_closed) {
           EXPECT_NE(p.reason.find("gap"), std::string::npos) << describe(r);
-        else
+        } else {
           EXPECT_TRUE(p.repaired()) << "object " << n << "\n" << describe(r);
+        }
       }
     EXPECT_GE(mine, 1) << "object " << n;
     Detection d = detect(m.body, tol_for(m.body, m.tolerance));
     EXPECT_EQ(d.count(ProblemType::small_face_chain), 0) << "object " << n;
-    if (n != 10 || gaps_closed) EXPECT_EQ(d.count(ProblemType::sliver_face), 0) << "object " << n;
+    if (n != 10 || gaps_closed) {
+      EXPECT_EQ(d.count(ProblemType::sliver_face), 0) << "object " << n;
+    }
   }
 }
 
