@@ -28,9 +28,10 @@ void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
     return std::vector<FaceH>(ns.begin(), ns.end());
   };
   // A chain: connected small faces none of which has more than two small neighbours. A
-  // face with more is a branch point of a network of small faces (paper 7): it joins no
-  // chain and is reported on its own.
-  auto chainable = [&](FaceH f) { return small_nbrs(f).size() <= 2; };
+  // connected patch with a face that has more is a network (paper 7: the paper splits
+  // chains there and leaves the branch faces alone; pass 5 collapses a tree-shaped
+  // network as a whole, or says why not): reported whole, as one small_face_chain. One
+  // walk over the small faces, each face's neighbours read once: linear.
   Marks seen = c.marks_faces();
   for (FaceH f : c.scope.faces) {
     const FaceInfo& fi = c.face(f);
@@ -46,14 +47,12 @@ void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
     if (!fi.small || seen.test(f.idx())) continue;
     std::vector<FaceH> comp{f};
     seen.set(f.idx());
-    if (chainable(f)) {
-      for (std::size_t i = 0; i < comp.size(); ++i)
-        for (FaceH g : small_nbrs(comp[i]))
-          if (!seen.test(g.idx()) && chainable(g)) {
-            seen.set(g.idx());
-            comp.push_back(g);
-          }
-    }
+    for (std::size_t i = 0; i < comp.size(); ++i)
+      for (FaceH g : small_nbrs(comp[i]))
+        if (!seen.test(g.idx())) {
+          seen.set(g.idx());
+          comp.push_back(g);
+        }
     Problem p;
     p.type = comp.size() >= 2 ? ProblemType::small_face_chain : ProblemType::small_face;
     std::sort(comp.begin(), comp.end());

@@ -311,6 +311,16 @@ KnownDefect tilt_short_edge(Body& b, VertexH v, FaceH tri, double length) {
 }
 
 KnownDefect chamfer(Body& b, EdgeH e, FaceH A, double wa, double wb) {
+  HalfedgeH hA = side_in_face(b, e, A);
+  if (!hA.valid() || !straight(b, e) || !b.face(twin(hA)).valid() || !plane_of(b, A) || !plane_of(b, b.face(twin(hA))))
+    throw Unsuitable(e.str() + " is not a straight edge of " + A.str() + " between planar faces");
+  Vec3 d = dir_of(b, hA);
+  Vec3 uA = outward_normal(b, A).cross(d), uB = outward_normal(b, b.face(twin(hA))).cross(-d);
+  Vec3 P0 = b.point(b.origin(hA));
+  return chamfer_plane(b, e, A, P0 + wa * uA, d.cross(wb * uB - wa * uA));
+}
+
+KnownDefect chamfer_plane(Body& b, EdgeH e, FaceH A, const Vec3& point, const Vec3& normal) {
   HalfedgeH hA = side_in_face(b, e, A), hB = twin(hA);
   if (!hA.valid() || !straight(b, e)) throw Unsuitable(e.str() + " is not a straight edge of " + A.str());
   FaceH B = b.face(hB);
@@ -324,12 +334,11 @@ KnownDefect chamfer(Body& b, EdgeH e, FaceH A, double wa, double wb) {
   for (FaceH f : {A, B, C, D})
     if (!f.valid() || !plane_of(b, f)) throw Unsuitable("a face at " + e.str() + " is not planar");
   if (C == D || C == A || C == B || D == A || D == B) throw Unsuitable("the faces at " + e.str() + " repeat");
-  Vec3 P0 = b.point(p), d = dir_of(b, hA);
+  Vec3 P0 = b.point(p);
   Vec3 nA = outward_normal(b, A), nB = outward_normal(b, B);
-  Vec3 uA = nA.cross(d), uB = nB.cross(-d);
-  Vec3 nS = d.cross(wb * uB - wa * uA);
+  Vec3 nS = normal;
   if (nS.dot(nA + nB) < 0) nS = -nS;
-  PlaneRec S{P0 + wa * uA, nS.normalized()};
+  PlaneRec S{point, nS.normalized()};
   PlaneRec pa = plane_rec(b, A), pb = plane_rec(b, B), pc = plane_rec(b, C), pd = plane_rec(b, D);
   Vec3 xpA = need(meet(pa, pc, S), "chamfer"), xpB = need(meet(pb, pc, S), "chamfer");
   Vec3 xqA = need(meet(pa, pd, S), "chamfer"), xqB = need(meet(pb, pd, S), "chamfer");

@@ -50,6 +50,9 @@ KnownDefect tilt_short_edge(Body& b, VertexH v, FaceH tri, double length);
 // sliver_face: edge e (straight, between planar faces A and B, both ends of degree 3)
 // replaced by a thin chamfer-like face cutting `wa` into A and `wb` into B.
 KnownDefect chamfer(Body& b, EdgeH e, FaceH A, double wa, double wb);
+// The same with the chamfer plane given (through `point`, normal ±`normal`): a plane not
+// parallel to e makes a tapered sliver.
+KnownDefect chamfer_plane(Body& b, EdgeH e, FaceH A, const Vec3& point, const Vec3& normal);
 
 // same_geometry_faces: planar face f split between the midpoints of edges e1 and e2,
 // the new half turned about the split line so that the two planes deviate by

@@ -9,6 +9,7 @@
 #include "zoo/defects.h"
 #include "zoo/defects_gaps.h"
 #include "zoo/defects_pinch.h"
+#include "zoo/defects_slivers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -131,6 +132,8 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
                          },
                          v.str()});
       }
+      if (t == ProblemType::small_face_chain)
+        for (Maker& m : notch_makers(b, edges, tol, rng)) out.push_back({std::move(m.make), m.where});
       break;
     case ProblemType::short_edge:
       for (VertexH v : vertices) {
@@ -151,15 +154,7 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
       }
       break;
     case ProblemType::sliver_face:
-      for (EdgeH e : edges) {
-        HalfedgeH h = halfedge_of(e, 0);
-        if (!straight(b, e) || !b.face(h).valid() || !b.face(twin(h)).valid()) continue;
-        if (b.degree(b.origin(h)) != 3 || b.degree(b.target(h)) != 3) continue;
-        double wa = 0.5 * tol * u(), wb = 0.5 * tol * u();
-        if (edge_len(b, e) < 10 * tol) continue;  // a sliver is long: area / diagonal < tol
-        FaceH a = b.face(h);
-        out.push_back({[=](Body& x) { return make::chamfer(x, e, a, wa, wb); }, e.str()});
-      }
+      for (Maker& m : sliver_makers(b, edges, tol, rng)) out.push_back({std::move(m.make), m.where});
       break;
     case ProblemType::same_geometry_faces:
       for (FaceH f : faces) {

@@ -1,0 +1,211 @@
+// Pass 6, sliver faces (paper 4.4, Figure 23; branched slivers, paper 7 and Figure
+// 32(a)): a long thin face is replaced by edges along which the faces on either side of
+// it meet.
+//
+// Accepts: sliver_face [the face]. Topology (repair/face_collapse.h):
+//   1. jekv away the sliver's vertices that lie on no other edge;
+//   2. the edge sequence through the rest (paper 4.4): the two closest vertices first,
+//      then always the vertex closest to one end of the growing sequence;
+//   3. its edges that are not edges of the sliver become chords (mef), and every piece
+//      the chords cut the sliver into is killed (kef) into the face beyond its one edge
+//      outside the sequence.
+// A branched sliver (three or more arms) has no such sequence: its chords cross, or a
+// vertex would have to move farther than the tolerance to where its new faces meet. It
+// is then collapsed onto a tree instead: a junction vertex where the faces around the
+// sliver meet, joined to the vertices of each arm (Prim's tree from the junction, so each
+// vertex hangs from the nearest vertex already joined).
+// Geometry: every vertex of the sequence or tree goes to where its faces now meet
+// (place_vertices, at most twice the tolerance from where it was), and every edge there
+// gets the curve where its two faces meet (derive_edge_curve).
+// A vertex left on two edges between the same two faces (where the sliver's short end
+// edge now continues the edge beyond it) is joined away (jekv), so the sliver's ends do
+// not stay as short edges or mergeable vertices.
+// May leave (Table 1, column 6): short edges and chains of them, adjacent faces with the
+// same geometry.
+#include "geometry/meet_point.h"
+#include "invariants/element_geometry.h"
+#include "kernel/euler.h"
+#include "kernel/transaction.h"
+#include "repair/beautify_detail.h"
+#include "repair/face_collapse.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+namespace kintsugi::detail {
+
+namespace {
+
+using Tree = std::vector<std::pair<VertexH, VertexH>>;
+
+// Paper 4.4: the closest pair first, then the vertex closest to either end.
+std::vector<VertexH> edge_sequence(const Body& b, std::vector<VertexH> rest) {
+  auto d = [&](VertexH x, VertexH y) { return (b.point(x) - b.point(y)).norm(); };
+  std::size_t bi = 0, bj = 1;
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (d(rest[i], rest[j]) < d(rest[bi], rest[bj])) bi = i, bj = j;
+  std::deque<VertexH> seq{rest[bi], rest[bj]};
+  rest.erase(rest.begin() + std::ptrdiff_t(std::max(bi, bj)));
+  rest.erase(rest.begin() + std::ptrdiff_t(std::min(bi, bj)));
+  while (!rest.empty()) {
+    std::size_t best = 0;
+    bool front = true;
+    double best_d = HUGE_VAL;
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      if (d(rest[i], seq.front()) < best_d) best_d = d(rest[i], seq.front()), best = i, front = true;
+      if (d(rest[i], seq.back()) < best_d) best_d = d(rest[i], seq.back()), best = i, front = false;
+    }
+    if (front)
+      seq.push_front(rest[best]);
+    else
+      seq.push_back(rest[best]);
+    rest.erase(rest.begin() + std::ptrdiff_t(best));
+  }
+  return {seq.begin(), seq.end()};
+}
+
+Tree path_edges(const std::vector<VertexH>& seq) {
+  Tree t;
+  for (std::size_t i = 0; i + 1 < seq.size(); ++i) t.push_back({seq[i], seq[i + 1]});
+  return t;
+}
+
+// Places the vertices of the collapsed sliver where their faces meet. A vertex left on
+// two edges between the same two faces (an end of the sliver whose short end edge now
+// continues the edge beyond it) is joined away first: the paper's Table 1 has sliver
+// removal create no mergeable edges, and this is why.
+std::string place(RepairContext& c, const std::vector<VertexH>& vs) {
+  Body& b = c.b;
+  std::vector<std::pair<VertexH, geo::Vec3>> guesses;
+  for (VertexH v : vs) {
+    auto outs = b.outgoing(v);
+    if (outs.size() == 2 && edge_of(outs[0]) != edge_of(outs[1])) {
+      auto pair = [&](HalfedgeH h) { return std::minmax(b.face(h), b.face(twin(h))); };
+      if (pair(outs[0]) == pair(outs[1])) {
+        // The longer edge (the one beyond the sliver) keeps its handle: a problem at its
+        // far end keeps its identity.
+        HalfedgeH keep = edge_length(b, edge_of(outs[0])) >= edge_length(b, edge_of(outs[1])) ? outs[0] : outs[1];
+        auto r = euler::jekv(b, twin(keep));
+        if (!r) return "jekv refused at " + v.str() + ": " + r.error().message;
+        continue;
+      }
+    }
+    guesses.push_back({v, b.point(v)});
+  }
+  for (auto [v, p] : guesses)
+    for (FaceH g : faces_around(b, v)) c.touched.faces.insert(g);
+  return place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched);
+}
+
+std::string unbranched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop) {
+  std::vector<VertexH> seq = edge_sequence(c.b, loop);
+  Tree tree = path_edges(seq);
+  if (chords_cross(loop, tree)) return "its edge sequence crosses itself (a branched sliver)";
+  if (auto why = collapse_onto_tree(c.b, f, tree); !why.empty()) return why;
+  return place(c, seq);
+}
+
+// The point where the faces around a branched sliver meet: the faces it shares the most
+// boundary with (its sides, not its short ends), as many as it has arms.
+std::optional<geo::Vec3> junction_point(const Body& b, FaceH f, const geo::Tolerances& tol, std::size_t arms,
+                                        const geo::Vec3& guess) {
+  std::map<FaceH, double> shared;
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) shared[b.face(twin(h))] += edge_length(b, edge_of(h));
+  std::vector<std::pair<double, FaceH>> by_length;
+  for (auto [g, len] : shared) by_length.push_back({len, g});
+  std::sort(by_length.rbegin(), by_length.rend());
+  if (by_length.size() < 3) return std::nullopt;
+  std::vector<geo::Surface> sides;
+  for (std::size_t i = 0; i < std::min(arms, by_length.size()); ++i) sides.push_back(b.surface(by_length[i].second));
+  geo::MeetPoint m = geo::meet_point(sides, guess, tol.length, tol.precision);
+  if (m.status == geo::MeetStatus::no_point || m.status == geo::MeetStatus::degenerate) return std::nullopt;
+  return m.point;
+}
+
+std::string branched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop) {
+  Body& b = c.b;
+  // Arms: runs of the loop between its sharp turns back (the tips). Counted as the loop
+  // vertices whose two loop neighbours lie on the same side, seen from the centroid.
+  geo::Vec3 centre = geo::Vec3::Zero();
+  for (VertexH v : loop) centre += b.point(v);
+  centre /= double(loop.size());
+  // Faces it shares boundary with beyond its two sides: at least three sides make a branch.
+  std::size_t sides = 0;
+  {
+    std::map<FaceH, double> shared;
+    for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) shared[b.face(twin(h))] += edge_length(b, edge_of(h));
+    for (auto [g, len] : shared) sides += len > 2 * c.tol.length;
+  }
+  if (sides < 3) return "fewer than three faces run along it: not a branched sliver";
+  auto j = junction_point(b, f, c.tol, sides, centre);
+  if (!j) return "the faces along its arms do not meet in a point";
+  // Prim's tree from the junction over the loop's vertices.
+  std::vector<geo::Vec3> at{*j};
+  std::vector<VertexH> in{VertexH{}};
+  std::vector<VertexH> rest = loop;
+  Tree tree;
+  while (!rest.empty()) {
+    std::size_t bi = 0, bj = 0;
+    double best = HUGE_VAL;
+    for (std::size_t i = 0; i < rest.size(); ++i)
+      for (std::size_t k = 0; k < in.size(); ++k) {
+        double d = (b.point(rest[i]) - at[k]).norm();
+        if (d < best) best = d, bi = i, bj = k;
+      }
+    tree.push_back({in[bj], rest[bi]});
+    in.push_back(rest[bi]);
+    at.push_back(b.point(rest[bi]));
+    rest.erase(rest.begin() + std::ptrdiff_t(bi));
+  }
+  std::size_t spokes = 0;
+  for (auto [u, w] : tree) spokes += !u.valid();
+  if (spokes < 2) return "its tree has a single arm";
+  if (chords_cross(loop, tree)) return "its tree of edges crosses itself";
+  VertexH junction;
+  if (auto why = collapse_onto_tree(b, f, tree, &junction, *j); !why.empty()) return why;
+  std::vector<VertexH> vs = loop;
+  vs.push_back(junction);
+  return place(c, vs);
+}
+
+std::string repair_sliver_face(RepairContext& c) {
+  Body& b = c.b;
+  FaceH f = c.problem.first<FaceH>();
+  if (!f.valid()) return "no face named";
+  if (auto why = collapsible(b, f); !why.empty()) return why;
+  auto m = face_area_and_bounds(b, f, 1e-3 * c.tol.length);
+  if (!m || !(m->bounds.diagonal() > 0) || !(m->area / m->bounds.diagonal() < c.tol.length))
+    return f.str() + " is no longer a sliver";
+  if (auto why = drop_bare_vertices(b, f); !why.empty()) return why;
+  std::vector<VertexH> loop = b.loop_vertices(b.outer_loop(f));
+  if (loop.size() < 2) return f.str() + " has fewer than two vertices on other edges";
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (loop[i] == loop[k]) return f.str() + " passes " + loop[i].str() + " twice";
+  std::string first;
+  {
+    Transaction attempt(b);
+    Touched before = c.touched;
+    first = unbranched(c, f, loop);
+    if (first.empty()) {
+      attempt.commit();
+      return "";
+    }
+    attempt.rollback();
+    c.touched = before;
+  }
+  std::string second = branched(c, f, loop);
+  if (second.empty()) return "";
+  return "as a sequence: " + first + "; as a branched sliver: " + second;
+}
+
+}  // namespace
+
+}  // namespace kintsugi::detail
+
+KINTSUGI_PASS(sliver_face) = {kintsugi::ProblemType::sliver_face, "sliver faces",
+                              "a long thin face becomes the edges where the faces on either side of it meet",
+                              kintsugi::detail::repair_sliver_face};

@@ -1,0 +1,314 @@
+// Slivers and chains of small faces the way surface fitting makes them (spec/defects.md):
+// a chamfer plane or a narrow cylindrical fillet that fitting invented along an edge,
+// tapered or not, on convex and concave edges; a small notch along an edge (an end face,
+// one or more faces along the edge, an end face: all below the tolerance).
+#include "zoo/defects_slivers.h"
+
+#include "geometry/curve.h"
+
+#include <cmath>
+
+namespace kintsugi::zoo {
+
+namespace {
+
+Vec3 dir_of(const Body& b, HalfedgeH h) { return (b.point(b.target(h)) - b.point(b.origin(h))).normalized(); }
+
+bool straight(const Body& b, EdgeH e) { return std::holds_alternative<geo::Line>(b.curve(e)); }
+
+FaceH face_named(const std::string& s) { return FaceH(FaceH::Index(std::stoul(s.substr(1)))); }
+
+// The two planar faces of a straight edge and the directions into them, square to it.
+struct EdgeFrame {
+  HalfedgeH hA;
+  FaceH A, B;
+  Vec3 p, q, d, nA, nB, uA, uB;
+  bool convex;
+};
+
+EdgeFrame edge_frame(const Body& b, EdgeH e, FaceH A) {
+  HalfedgeH hA = side_in_face(b, e, A);
+  if (!hA.valid() || !straight(b, e)) throw Unsuitable(e.str() + " is not a straight edge of " + A.str());
+  FaceH B = b.face(twin(hA));
+  if (!B.valid() || B == A || !plane_of(b, A) || !plane_of(b, B)) throw Unsuitable(e.str() + " is not between two planar faces");
+  EdgeFrame f{hA, A, B, b.point(b.origin(hA)), b.point(b.target(hA)), dir_of(b, hA), outward_normal(b, A), outward_normal(b, B), {}, {}, false};
+  f.uA = f.nA.cross(f.d);   // into A, square to the edge (A's loop turns left)
+  f.uB = f.nB.cross(-f.d);  // into B
+  f.convex = f.uA.dot(f.nB) < 0;
+  if (std::abs(f.nA.dot(f.nB)) > 1 - 1e-6) throw Unsuitable(e.str() + " joins two parallel faces");
+  return f;
+}
+
+}  // namespace
+
+namespace make {
+
+KnownDefect tapered_chamfer(Body& b, EdgeH e, FaceH A, double wa0, double wb0, double wa1) {
+  EdgeFrame f = edge_frame(b, e, A);
+  Vec3 a0 = f.p + wa0 * f.uA, b0 = f.p + wb0 * f.uB, a1 = f.q + wa1 * f.uA;
+  return chamfer_plane(b, e, A, a0, (b0 - a0).cross(a1 - a0));
+}
+
+KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius) {
+  EdgeFrame f = edge_frame(b, e, A);
+  // The axis at distance `radius` from both planes, inside the solid at a convex edge
+  // (material taken off) and outside at a concave one (material added).
+  const double s = f.convex ? -1.0 : 1.0;
+  const double na_ub = f.nA.dot(f.uB), nb_ua = f.nB.dot(f.uA);
+  if (std::abs(na_ub) < 1e-6 || std::abs(nb_ua) < 1e-6) throw Unsuitable(e.str() + " is too flat for a fillet");
+  Vec3 c = f.p + (s * radius / nb_ua) * f.uA + (s * radius / na_ub) * f.uB;
+  Vec3 tA = c - s * radius * f.nA, tB = c - s * radius * f.nB;
+  // Its ends are arcs: the faces at the edge's ends must be square to it.
+  for (HalfedgeH h : {b.next(twin(b.next(twin(f.hA)))), b.next(twin(b.next(f.hA)))}) {
+    FaceH end = b.face(h);
+    if (!end.valid() || !plane_of(b, end) || std::abs(outward_normal(b, end).dot(f.d)) < 1 - 1e-9)
+      throw Unsuitable("the faces at the ends of " + e.str() + " are not square to it");
+  }
+  KnownDefect d = chamfer_plane(b, e, A, tA, f.d.cross(tB - tA));
+  FaceH sliver = face_named(d.elements[0]);
+  geo::Cylinder cyl;
+  cyl.frame.origin = c;
+  cyl.frame.z = f.d;
+  cyl.frame.x = (tA - c).normalized();
+  cyl.radius = radius;
+  b.set_surface(sliver, cyl, f.convex);
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(sliver))) {
+    Vec3 x = b.point(b.origin(h)), y = b.point(b.target(h));
+    if (std::abs((y - x).normalized().dot(f.d)) > 0.5) continue;  // a long side: a line on A or B
+    Vec3 centre = c + (x - c).dot(f.d) * f.d;
+    set_circle(b, h, centre, (x - centre).cross(y - centre).normalized());
+  }
+  double theta = std::acos(std::clamp((tA - c).normalized().dot((tB - c).normalized()), -1.0, 1.0));
+  d.size = radius * theta;  // the width
+  return d;
+}
+
+KnownDefect notch(Body& b, EdgeH e, FaceH A, double s0, const std::vector<double>& lengths,
+                  const std::vector<double>& wa, double wb0) {
+  EdgeFrame f = edge_frame(b, e, A);
+  if (!f.convex) throw Unsuitable(e.str() + " is not a convex edge");
+  if (wa.size() != lengths.size() + 1) throw std::logic_error("notch: one width per cross section");
+  double total = 0;
+  for (double l : lengths) total += l;
+  const double len = (f.q - f.p).norm();
+  if (!(s0 > 0 && s0 + total < len)) throw Unsuitable("the notch does not fit on " + e.str());
+  for (VertexH v : {b.origin(f.hA), b.target(f.hA)})
+    if (b.degree(v) < 3) throw Unsuitable("an end of " + e.str() + " lies on too few edges");
+  // Cross sections: a_i on A, b_i on B; each face along the edge is the plane through
+  // a_i, b_i and a_{i+1}, which fixes b_{i+1} on B.
+  std::vector<double> at{s0};
+  for (double l : lengths) at.push_back(at.back() + l);
+  std::vector<Vec3> pa, pb;
+  pb.push_back(f.p + s0 * f.d + wb0 * f.uB);
+  for (std::size_t i = 0; i < at.size(); ++i) pa.push_back(f.p + at[i] * f.d + wa[i] * f.uA);
+  std::vector<std::pair<Vec3, Vec3>> floor;  // (point, normal) of each face along
+  for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+    Vec3 n = (pb[i] - pa[i]).cross(pa[i + 1] - pa[i]);
+    if (n.dot(f.nA + f.nB) < 0) n = -n;
+    floor.push_back({pa[i], n.normalized()});
+    auto x = meet3(pa[i], n, f.p, f.nB, f.p + at[i + 1] * f.d, f.d);
+    if (!x) throw Unsuitable("the notch's faces do not meet");
+    pb.push_back(*x);
+  }
+  for (std::size_t i = 0; i < pb.size(); ++i) {
+    Vec3 r = pb[i] - (f.p + at[i] * f.d);
+    if (!(r.dot(f.uB) > 0) || r.norm() > 4 * (wb0 + wa[0])) throw Unsuitable("the notch leaves face " + f.B.str());
+  }
+  // The edge loses [s0, s0 + total]; each side of that stretch is cut off its face along
+  // a path through the cross sections, and the two strips, joined, are split across.
+  SemvResult s1 = must(euler::semv(b, f.hA, f.p + s0 * f.d), "semv (notch)");
+  must(euler::semv(b, s1.next, f.p + at.back() * f.d), "semv (notch)");
+  HalfedgeH mid = s1.next;  // in A, from the notch's start to its end
+  VertexH end = b.target(mid);
+  cut_off(b, mid, pa);
+  std::vector<Vec3> back(pb.rbegin(), pb.rend());
+  cut_off(b, twin(mid), back);
+  FaceH all = b.face(mid);
+  must(euler::kef(b, mid), "kef (notch)");  // the strip in B joins the strip in A
+  // Vertices of the cross sections, found by position in the strip's loop.
+  auto vertex_near = [&](const Vec3& x) {
+    for (VertexH v : b.loop_vertices(b.outer_loop(all)))
+      if ((b.point(v) - x).norm() < 1e-9 * (1 + x.norm())) return v;
+    throw std::logic_error("notch: lost a vertex");
+  };
+  std::vector<FaceH> chain;
+  FaceH rest = all;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    VertexH va = vertex_near(pa[i]), vb = vertex_near(pb[i]);
+    MefResult m = must(euler::mef(b, Corner::before(out_in_loop(b, va, b.outer_loop(rest))),
+                                  Corner::before(out_in_loop(b, vb, b.outer_loop(rest)))),
+                       "mef (notch)");
+    // The new face is the side holding `start` on the first cut, and the side behind the
+    // previous cut after that: whichever of the two does not hold `end`.
+    bool new_has_end = false;
+    for (VertexH v : b.loop_vertices(b.outer_loop(m.face))) new_has_end = new_has_end || v == end;
+    FaceH piece = new_has_end ? rest : m.face;
+    rest = new_has_end ? m.face : rest;
+    set_line(b, m.edge);
+    chain.push_back(piece);
+  }
+  chain.push_back(rest);
+  // Planes: end walls square to the edge, the faces along through their cross sections.
+  set_plane(b, chain.front(), f.p + at.front() * f.d, f.d);  // the material is behind it
+  set_plane(b, chain.back(), f.p + at.back() * f.d, -f.d);
+  for (std::size_t i = 0; i + 1 < at.size(); ++i) set_plane(b, chain[i + 1], floor[i].first, floor[i].second);
+  KnownDefect d{ProblemType::small_face_chain, {}, 0.0};
+  for (FaceH g : chain) {
+    d.elements.push_back(g.str());
+    d.size = std::max(d.size, polygon_area(loop_points(b, b.outer_loop(g))));
+  }
+  return d;
+}
+
+}  // namespace make
+
+namespace {
+
+// The Y-shaped face that replaces the three edges at convex corner v near v: tips `arm`
+// along each edge, inner corners `width` inside both edges of each face.
+struct YFace {
+  FaceH face;
+  std::vector<VertexH> tips, inner;
+  Vec3 axis;
+};
+
+YFace y_face(Body& b, VertexH v, double arm, double width) {
+  auto axis = convex_corner_axis(b, v);
+  std::vector<HalfedgeH> outs = b.outgoing(v);
+  if (!axis || outs.size() != 3) throw Unsuitable(v.str() + " is not a convex corner of three planar faces");
+  const Vec3 P = b.point(v);
+  std::vector<Vec3> dir;
+  for (HalfedgeH o : outs) {
+    if ((b.point(b.target(o)) - P).norm() < 3 * arm) throw Unsuitable("the arms do not fit at " + v.str());
+    dir.push_back(dir_of(b, o));
+  }
+  YFace y;
+  y.axis = *axis;
+  // Edge o_i runs between face(o_i) and face(o_{i+1}); face(o_i) holds o_{i-1} and o_i.
+  for (std::size_t i = 0; i < 3; ++i) y.tips.push_back(must(euler::semv(b, outs[i], P + arm * dir[i]), "semv (Y)").vertex);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::size_t j = (i + 2) % 3;  // o_{i-1}
+    FaceH f = b.face(outs[i]);
+    const double sine = dir[i].cross(dir[j]).norm();
+    const Vec3 k = P + (width / sine) * (dir[i] + dir[j]);
+    // A path tips[i] -> k -> tips[j] inside f cuts its corner at v off.
+    HalfedgeH after = b.next(outs[i]);  // leaves tips[i] in f
+    MevResult s = must(euler::mev(b, Corner::before(after), k), "mev (Y)");
+    MefResult m = must(euler::mef(b, Corner::before(s.y), Corner::before(twin(outs[j]))), "mef (Y)");
+    b.set_surface(m.face, b.surface(f), b.same_sense(f));
+    y.inner.push_back(s.vertex);
+  }
+  // The three corner pieces become one face, and v goes.
+  must(euler::kef(b, outs[0]), "kef (Y)");
+  must(euler::kef(b, outs[1]), "kef (Y)");
+  y.face = b.face(outs[2]);
+  must(euler::kev(b, twin(outs[2])), "kev (Y)");
+  std::vector<VertexH> all = y.tips;
+  all.insert(all.end(), y.inner.begin(), y.inner.end());
+  refit_lines(b, all);
+  return y;
+}
+
+}  // namespace
+
+namespace make {
+
+KnownDefect branched_sliver(Body& b, VertexH v, double arm, double width) {
+  YFace y = y_face(b, v, arm, width);
+  // Its plane holds the three tips; a Y cannot be planar (its inner corners lie on the
+  // faces around it, off that plane by about the width): only its measure uses it.
+  const std::vector<VertexH>& t = y.tips;
+  Vec3 n = (b.point(t[1]) - b.point(t[0])).cross(b.point(t[2]) - b.point(t[0]));
+  if (n.dot(y.axis) < 0) n = -n;
+  set_plane(b, y.face, b.point(t[0]), n.normalized());
+  return {ProblemType::sliver_face, {y.face.str()}, width};
+}
+
+KnownDefect corner_network(Body& b, VertexH v, double arm, double width) {
+  YFace y = y_face(b, v, arm, width);
+  // Chords between the inner corners: a middle triangle and one triangle per arm.
+  std::vector<FaceH> faces{y.face};
+  for (std::size_t i = 0; i < 3; ++i) {
+    VertexH k1 = y.inner[i], k2 = y.inner[(i + 1) % 3];
+    bool done = false;
+    for (FaceH f : std::vector<FaceH>(faces)) {
+      HalfedgeH h1 = out_in_loop(b, k1, b.outer_loop(f)), h2 = out_in_loop(b, k2, b.outer_loop(f));
+      if (!h1.valid() || !h2.valid() || b.next(h1) == h2 || b.next(h2) == h1) continue;
+      MefResult m = must(euler::mef(b, Corner::before(h1), Corner::before(h2)), "mef (network)");
+      set_line(b, m.edge);
+      faces.push_back(m.face);
+      done = true;
+      break;
+    }
+    if (!done) throw std::logic_error("corner network: no face holds both inner corners");
+  }
+  KnownDefect d{ProblemType::small_face_chain, {}, 0.0};
+  for (FaceH f : faces) {
+    fit_plane(b, f);
+    d.elements.push_back(f.str());
+    d.size = std::max(d.size, polygon_area(loop_points(b, b.outer_loop(f))));
+  }
+  return d;
+}
+
+}  // namespace make
+}  // namespace kintsugi::zoo
+
+namespace kintsugi::zoo {
+
+namespace {
+
+double straight_length(const Body& b, EdgeH e) {
+  HalfedgeH h = halfedge_of(e, 0);
+  return (b.point(b.target(h)) - b.point(b.origin(h))).norm();
+}
+
+bool planar_sides(const Body& b, EdgeH e) {
+  HalfedgeH h = halfedge_of(e, 0);
+  FaceH f = b.face(h), g = b.face(twin(h));
+  return straight(b, e) && f.valid() && g.valid() && f != g && plane_of(b, f) && plane_of(b, g);
+}
+
+}  // namespace
+
+std::vector<Maker> sliver_makers(const Body& b, const std::vector<EdgeH>& edges, double tol, Rng& rng) {
+  std::vector<Maker> out;
+  auto w = [&] { return tol * rng.uniform(0.1, 0.4); };  // a width well below the tolerance
+  for (EdgeH e : edges) {
+    if (!planar_sides(b, e)) continue;
+    HalfedgeH h = halfedge_of(e, 0);
+    if (b.degree(b.origin(h)) != 3 || b.degree(b.target(h)) != 3) continue;
+    if (straight_length(b, e) < 10 * tol) continue;  // a sliver is long: area / diagonal < tol
+    FaceH a = b.face(h);
+    const std::uint64_t kind = rng.below(3);
+    const double w0 = w(), w1 = w(), w2 = w();
+    if (kind == 0)
+      out.push_back({[=](Body& x) { return make::chamfer(x, e, a, 0.7 * w0, 0.7 * w1); }, e.str()});
+    else if (kind == 1)
+      out.push_back({[=](Body& x) { return make::tapered_chamfer(x, e, a, 0.7 * w0, 0.7 * w1, 0.7 * w2); }, e.str()});
+    else
+      out.push_back({[=](Body& x) { return make::fillet(x, e, a, 0.6 * w0); }, e.str()});
+  }
+  return out;
+}
+
+std::vector<Maker> notch_makers(const Body& b, const std::vector<EdgeH>& edges, double tol, Rng& rng) {
+  std::vector<Maker> out;
+  for (EdgeH e : edges) {
+    if (!planar_sides(b, e)) continue;
+    const double len = straight_length(b, e);
+    const std::size_t along = 1 + rng.below(3);  // chains of 3 to 5 faces
+    std::vector<double> lengths, wa;
+    double total = 0;
+    for (std::size_t i = 0; i < along; ++i) total += lengths.emplace_back(tol * rng.uniform(0.3, 0.8));
+    for (std::size_t i = 0; i <= along; ++i) wa.push_back(tol * rng.uniform(0.15, 0.4));
+    const double wb = tol * rng.uniform(0.15, 0.4);
+    if (len < total + 4 * tol) continue;
+    const double s0 = rng.uniform(0.3, 0.7) * (len - total);
+    FaceH a = b.face(halfedge_of(e, 0));
+    out.push_back({[=](Body& x) { return make::notch(x, e, a, s0, lengths, wa, wb); }, e.str()});
+  }
+  return out;
+}
+
+}  // namespace kintsugi::zoo
