@@ -7,7 +7,8 @@
 // it reads URL parameters: ?click=N clicks entry N after loading, ?still=1 hides the
 // list and shows a legend (what --png photographs). It writes into the DOM what a
 // headless browser can read back: body[data-ready], body[data-errors] (console errors
-// and exceptions, also listed in #errors), body[data-camera], body[data-render-ms], and
+// and exceptions, also listed in #errors), body[data-camera], body[data-render-ms] (first
+// frame done, ms since navigation) and body[data-timing] (its steps), and
 // on each list entry data-screen="model:x,y ..." (where the problem projects, in page
 // pixels).
 #pragma once

@@ -79,7 +79,10 @@ FaceMesh tessellate_face(const Body& b, FaceH f, double chordal) {
   const auto loops = face_boundary(b, f, chordal);
   geo::AreaOptions o;
   o.reversed = !b.same_sense(f);
-  o.max_angle_step = angle_step(sweep_radius(s, loops), chordal);
+  // With two angular parameters (sphere, torus) a piece spans the step in both, so its
+  // diagonal spans √2 × step, whose sagitta is twice that of one side: halve the budget.
+  const bool two_angles = std::holds_alternative<geo::Sphere>(s) || std::holds_alternative<geo::Torus>(s);
+  o.max_angle_step = angle_step(sweep_radius(s, loops), two_angles ? chordal / 2 : chordal);
   geo::RegionMeasure m = geo::measure_region(s, loops, o);
   if (!m.ok()) {
     out.problem = m.problem;

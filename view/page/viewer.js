@@ -4,6 +4,7 @@
 // models, each model in its own viewport, so the views before and after stay linked.
 (function () {
   'use strict';
+  var timing = { start: performance.now() };  // since navigation: the page read and its scripts parsed
   var scene = JSON.parse(document.getElementById('scene').textContent);
   var params = new URLSearchParams(window.location.search);
   var still = params.get('still') === '1';
@@ -88,9 +89,12 @@
     var c = colourOf(p.type);
     p.marks.forEach(function (mark) {
       var v = views[mark.model];
+      // A pinched face is the context of its two close edges: a light tint, so the
+      // edges and the smaller problems on it stay visible.
+      var tint = base.clone().lerp(c, p.type === 'pinched_face' ? 0.3 : 0.85);
       mark.faces.forEach(function (f) {
         for (var i = v.faceVertices[f]; i < v.faceVertices[f + 1]; ++i) {
-          v.colours[3 * i] = c.r; v.colours[3 * i + 1] = c.g; v.colours[3 * i + 2] = c.b;
+          v.colours[3 * i] = tint.r; v.colours[3 * i + 1] = tint.g; v.colours[3 * i + 2] = tint.b;
         }
       });
       if (mark.lines.length) (v.segments[p.type] = v.segments[p.type] || []).push.apply(v.segments[p.type], mark.lines);
@@ -130,6 +134,8 @@
     if (v.dots.length) v.scene.add(points(v.dots, v.dotColours, 8));
     if (v.anchors.length) v.scene.add(points(v.anchors, v.anchorColours, 15));
   });
+
+  timing.built = performance.now();  // JSON parsed, arrays decoded, meshes and overlays built
 
   // ---- page --------------------------------------------------------------------------
   var canvas = document.getElementById('canvas');
@@ -209,7 +215,9 @@
   });
 
   // ---- camera, controls, drawing -------------------------------------------------------
+  timing.listed = performance.now();
   var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
+  timing.webgl = performance.now();  // a WebGL context (with software rendering, starting it dominates small pages)
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xffffff, 1);
   var camera = new THREE.PerspectiveCamera(30, 1, size * 1e-3, size * 10);
@@ -292,7 +300,9 @@
   // Wait for the GPU, so that data-render-ms is the time until the picture exists.
   var gl = renderer.getContext(), pixel = new Uint8Array(4);
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-  document.body.setAttribute('data-render-ms', performance.now().toFixed(0));
+  timing.rendered = performance.now();
+  document.body.setAttribute('data-render-ms', timing.rendered.toFixed(0));
+  document.body.setAttribute('data-timing', Object.keys(timing).map(function (k) { return k + ':' + timing[k].toFixed(0); }).join(' '));
   document.body.setAttribute('data-camera-initial', cameraText());
   var click = params.get('click');
   if (click !== null && items[Number(click)]) items[Number(click)].click();
