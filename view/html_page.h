@@ -5,7 +5,8 @@
 // zoom: wheel, pan: right drag), edges drawn, each problem type in its own colour, and
 // a list of the problems; clicking an entry frames the problem. For tests and pictures
 // it reads URL parameters: ?click=N clicks entry N after loading, ?still=1 hides the
-// list and shows a legend (what --png photographs). It writes into the DOM what a
+// list and shows a legend (what --png photographs), ?size=WxH lays the page out at that
+// size whatever the window. It writes into the DOM what a
 // headless browser can read back: body[data-ready], body[data-errors] (console errors
 // and exceptions, also listed in #errors), body[data-camera], body[data-render-ms] (first
 // frame done, ms since navigation) and body[data-timing] (its steps), and

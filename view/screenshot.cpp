@@ -117,7 +117,7 @@ std::optional<std::string> screenshot(const std::string& html_path, const Screen
                                    "--window-size=" + std::to_string(o.width) + "," + std::to_string(o.height),
                                    "--virtual-time-budget=10000",
                                    "--screenshot=" + png.string(),
-                                   file_url(page) + "?still=1"};
+                                   file_url(page) + "?still=1&size=" + std::to_string(o.width) + "x" + std::to_string(o.height)};
   // Chromium's sandbox refuses to run as root (containers, CI).
   if (geteuid() == 0) args.insert(args.begin() + 1, "--no-sandbox");
   std::vector<char*> argv;

@@ -1,5 +1,5 @@
 // Still pictures of a page (view/html_page.h) through headless Chromium: the page's
-// ?still=1 mode (no list, a legend) rendered with software WebGL (SwiftShader) and
+// ?still=1&size=WxH mode (no list, a legend) rendered with software WebGL (SwiftShader) and
 // captured with Chromium's --screenshot. Needs Chromium installed (Debian: chromium);
 // KINTSUGI_CHROMIUM may name the binary, otherwise chromium, chromium-browser,
 // google-chrome and google-chrome-stable are looked up on PATH.

@@ -154,7 +154,7 @@ try:
     check((width, height) == (1000, 800), "the picture is 1000 x 800 (got %d x %d)" % (width, height))
     grey = sum(1 for row in rows[::4] for p in row[::4] if abs(p[0] - p[2]) < 12 and 60 < p[0] < 235)
     check(grey > 2000, "the model is in the picture (%d shaded samples)" % grey)
-    still = dump(page, "?still=1", 1000, 800)
+    still = dump(page, "?still=1&size=1000x800", 1000, 800)  # as --png lays it out
     check(still.body.get("data-errors") == "0", "no errors in still mode")
     for t in types:
         rgb = hex_rgb(scene["colors"][t])

@@ -9,6 +9,14 @@
   var params = new URLSearchParams(window.location.search);
   var still = params.get('still') === '1';
   if (still) document.body.classList.add('still');
+  // ?size=WxH: the page laid out at exactly that size, whatever the window (a headless
+  // browser lays the page out in a smaller window than the picture it then takes).
+  var fixed = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
+  if (fixed) {
+    var main = document.getElementById('main');
+    main.style.width = fixed[1] + 'px';
+    main.style.height = fixed[2] + 'px';
+  }
   if (!document.body.hasAttribute('data-errors')) document.body.setAttribute('data-errors', '0');
 
   // ---- data ------------------------------------------------------------------------
