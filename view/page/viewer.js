@@ -156,15 +156,19 @@
   });
   var dividers = views.slice(1).map(function () { var d = el('div', 'divider'); holder.appendChild(d); return d; });
 
-  var counts = {};
-  scene.problems.forEach(function (p) { counts[p.type] = (counts[p.type] || 0) + 1; });
+  var counts = {}, repaired = {};
+  scene.problems.forEach(function (p) {
+    counts[p.type] = (counts[p.type] || 0) + 1;
+    if (p.action === 'repaired') repaired[p.type] = (repaired[p.type] || 0) + 1;
+  });
   function legend(parent) {
     Object.keys(counts).sort().forEach(function (type) {
       var row = el('div');
       var s = el('span', 'swatch');
       s.style.background = scene.colors[type] || '#808080';
       row.appendChild(s);
-      row.appendChild(document.createTextNode(type + ' \u00d7 ' + counts[type]));
+      row.appendChild(document.createTextNode(type + ' \u00d7 ' + counts[type] +
+        (views.length > 1 ? ', ' + (repaired[type] || 0) + ' repaired' : '')));
       parent.appendChild(row);
     });
   }
