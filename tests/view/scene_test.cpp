@@ -135,11 +135,18 @@ TEST(Page, TextCannotEndTheScriptEarly) {
   ProblemEntry p;
   p.type = "</script><script>alert(1)</script>";
   p.elements = {"f0"};
-  const std::string page = html_page(box_scene(b, {p}));
-  const auto start = page.find("id=\"scene\">");
+  const nlohmann::json scene = box_scene(b, {p});
+  const std::string page = html_page(scene);
+  // The browser ends the element at the first "</script>": what is before it must be
+  // the whole scene.
+  const std::string open = "id=\"scene\">";
+  const auto start = page.find(open);
   ASSERT_NE(start, std::string::npos);
   const auto end = page.find("</script>", start);
-  EXPECT_EQ(page.substr(start, end - start).find('<'), std::string::npos);
+  const std::string inlined = page.substr(start + open.size(), end - start - open.size());
+  EXPECT_EQ(inlined.find('<'), std::string::npos);
+  ASSERT_TRUE(nlohmann::json::accept(inlined));
+  EXPECT_EQ(nlohmann::json::parse(inlined), scene);
   EXPECT_NE(page.find("<title>box &lt;1&gt; - kintsugi</title>"), std::string::npos);
 }
 
