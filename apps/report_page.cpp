@@ -5,7 +5,6 @@
 #include "view/screenshot.h"
 
 #include <filesystem>
-#include <map>
 #include <unistd.h>
 
 namespace kintsugi::cli {
@@ -22,10 +21,10 @@ namespace {
 view::ProblemEntry entry_of(const Problem& p) {
   view::ProblemEntry e;
   e.type = problem_name(p.type);
-  e.elements = p.elements;
+  e.elements = element_names(p);
   e.measure = p.measure;
-  e.measure_name = p.measure_name;
-  e.subcase = p.subcase;
+  e.measure_name = measure_name(p.measure_kind);
+  e.subcase = subcase_name(p);
   return e;
 }
 
@@ -50,17 +49,10 @@ view::PageInput page_from_beautify(const Body& before, const Body& after, const 
   in.tolerance = tol.length;
   in.models.push_back({"before", &before, true});
   in.models.push_back({"after", &after, false});
-  // The report does not carry the measures: detect the model as it was and match by type
-  // and elements. Problems a repair created along the way have no match (measure unknown).
-  std::map<std::pair<ProblemType, std::vector<std::string>>, const Problem*> found;
-  const Detection d = detect(before, tol);
-  for (const Problem& p : d.problems) found.emplace(std::make_pair(p.type, p.elements), &p);
   for (const RepairEntry& p : r.problems) {
-    view::ProblemEntry e;
-    if (auto it = found.find({p.type, p.elements}); it != found.end()) e = entry_of(*it->second);
-    e.type = problem_name(p.type);
-    e.elements = p.elements;
-    e.action = p.action;
+    view::ProblemEntry e = entry_of(p.problem);
+    e.action = outcome_name(p.outcome);
+    e.resolved = !p.left();  // repaired, or removed by an earlier repair: not in the model after
     e.operators = p.operators;
     e.reason = p.reason;
     e.deviation = p.deviation;

@@ -19,7 +19,8 @@ view::PageInput page_from_detection(const Body& body, const std::string& title, 
                                     const geo::Tolerances& tol, const Detection& d);
 
 // The page of a beautify run: `before` and `after` side by side, one entry per problem
-// handled. The only code that reads BeautifyReport for the page.
+// handled, with its outcome and operators. The only code that reads BeautifyReport for
+// the page.
 view::PageInput page_from_beautify(const Body& before, const Body& after, const std::string& title,
                                    const std::string& units, const geo::Tolerances& tol, const BeautifyReport& r);
 

@@ -233,13 +233,14 @@ nlohmann::json scene_json(const PageInput& in) {
                         {"measure_name", optional_string(p.measure_name)},
                         {"subcase", optional_string(p.subcase)},
                         {"action", optional_string(p.action)},
+                        {"resolved", p.resolved},
                         {"operators", p.operators},
                         {"reason", optional_string(p.reason)},
                         {"deviation", optional_number(p.deviation)},
                         {"marks", nlohmann::json::array()}};
     geo::Box box;
     for (std::size_t i = 0; i < drawn.size(); ++i) {
-      if (!in.models[i].mark_repaired && p.action == "repaired") continue;
+      if (!in.models[i].mark_repaired && p.resolved) continue;
       geo::Box mbox;
       e["marks"].push_back(mark_json(drawn[i], i, p, origin, mbox));
       // The anchor is where the problem is in the first model that has it.

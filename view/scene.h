@@ -16,7 +16,7 @@
 //                "lines": {"positions": f32, "edge_points": u32},
 //                "untessellated": [{"face", "reason"}]}],
 //    "problems": [{"type", "elements", "measure", "measure_name", "subcase", "action",
-//                  "operators", "reason", "deviation", "anchor": [x,y,z], "radius",
+//                  "resolved", "operators", "reason", "deviation", "anchor": [x,y,z], "radius",
 //                  "marks": [{"model", "faces": [face positions in that model's mesh],
 //                             "lines": [x,y,z, x,y,z, ...  segment pairs], "points": [x,y,z, ...],
 //                             "missing": [elements not alive in that model]}]}]}
@@ -43,7 +43,8 @@ struct ProblemEntry {
   std::optional<double> measure;      // in model units; nullopt when not known
   std::string measure_name;           // "length", "area", ...
   std::string subcase;
-  std::string action;                 // "repaired", "not repaired", or empty
+  std::string action;                 // what beautify did ("repaired", "not repaired", ...), or empty
+  bool resolved = false;              // gone after beautify (repaired, or removed by another repair)
   std::vector<std::string> operators;
   std::string reason;
   std::optional<double> deviation;
@@ -53,7 +54,7 @@ struct ModelInput {
   std::string name;  // "model", "before", "after"
   const Body* body = nullptr;
   // Which problems are marked in this model: all of them, or (the model after a
-  // repair) only those not repaired, whose elements may still be there.
+  // repair) only those not resolved, whose elements are still there.
   bool mark_repaired = true;
 };
 

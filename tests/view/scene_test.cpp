@@ -111,6 +111,7 @@ TEST(Scene, RepairedProblemsAreNotMarkedAfter) {
   fixed.elements = {"e1"};
   left.elements = {"e2"};
   fixed.action = "repaired";
+  fixed.resolved = true;
   left.action = "not repaired";
   in.problems = {fixed, left};
   const nlohmann::json s = scene_json(in);

@@ -159,7 +159,7 @@
   var counts = {}, repaired = {};
   scene.problems.forEach(function (p) {
     counts[p.type] = (counts[p.type] || 0) + 1;
-    if (p.action === 'repaired') repaired[p.type] = (repaired[p.type] || 0) + 1;
+    if (p.resolved) repaired[p.type] = (repaired[p.type] || 0) + 1;
   });
   function legend(parent) {
     Object.keys(counts).sort().forEach(function (type) {
@@ -168,7 +168,7 @@
       s.style.background = scene.colors[type] || '#808080';
       row.appendChild(s);
       row.appendChild(document.createTextNode(type + ' \u00d7 ' + counts[type] +
-        (views.length > 1 ? ', ' + (repaired[type] || 0) + ' repaired' : '')));
+        (views.length > 1 ? ', ' + (repaired[type] || 0) + ' gone after' : '')));
       parent.appendChild(row);
     });
   }
@@ -219,7 +219,7 @@
     if (p.action) {
       var done = p.action + (p.operators.length ? ': ' + p.operators.join(', ') : '') + (p.reason ? ' \u2014 ' + p.reason : '') +
         (p.deviation !== null && p.action === 'repaired' ? '; deviation ' + num(p.deviation) + ' ' + scene.units : '');
-      li.appendChild(el('div', 'done' + (p.action === 'repaired' ? '' : ' not-repaired'), done));
+      li.appendChild(el('div', 'done' + (p.resolved ? '' : ' not-repaired'), done));
     }
     li.addEventListener('click', function () { frame(n); });
     list.appendChild(li);
