@@ -2,11 +2,13 @@
 #include "apps/commands.h"
 #include "apps/model_files.h"
 #include "apps/report_json.h"
+#include "apps/report_page.h"
 #include "apps/tolerance_choice.h"
 #include "repair/beautify.h"
 #include "repair/pass.h"
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 
@@ -27,7 +29,7 @@ std::string pass_list() {
 }
 
 const std::string kHelp =
-    "usage: kintsugi beautify IN [--tol T] -o OUT [--report R.json]\n\n"
+    "usage: kintsugi beautify IN [--tol T] -o OUT [--report R.json] [--html PAGE.html] [--png FILE]\n\n"
     "Repairs the topology of the model in IN (paper Figure 13, spec/beautify.md): the\n"
     "problems detect finds are repaired pass by pass in the paper's order:\n" +
     pass_list() +
@@ -40,7 +42,11 @@ const std::string kHelp =
     "                   \"counts_after\", \"problems_before\", \"problems_after\",\n"
     "                   \"left\": [{\"type\", \"elements\"}] (what the output still has),\n"
     "                   \"max_deviation\", \"seconds\": {\"read\", \"beautify\", \"write\",\n"
-    "                   \"passes\": {type: s}}}\n\n"
+    "                   \"passes\": {type: s}}}\n"
+    "  --html PAGE.html the model before and after side by side, cameras linked, each\n"
+    "                   problem marked and listed with what was done and the operators\n"
+    "  --png FILE       a still picture of that page (needs Chromium installed: Debian's\n"
+    "                   chromium, or the browser named in KINTSUGI_CHROMIUM)\n\n"
     "Exit: 0 written (whether or not every problem was repaired); 2 bad input or usage.\n";
 
 nlohmann::json problem_counts(const std::array<int, 11>& c) {
@@ -55,7 +61,7 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
   auto secs = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
   Args args;
   std::string error;
-  if (!args.parse(argv, {"--tol", "-o", "--report"}, {"--help"}, &error)) {
+  if (!args.parse(argv, {"--tol", "-o", "--report", "--html", "--png"}, {"--help"}, &error)) {
     err << "kintsugi beautify: " << error << "\n" << kHelp;
     return kExitBadInput;
   }
@@ -87,6 +93,8 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
   }
   if (choice->source != "--tol")
     err << "kintsugi beautify: tolerance " << choice->tol.length << " " << model->units << " from " << choice->source << "\n";
+  const bool page = args.has("--html") || args.has("--png");
+  const Body before = page ? model->body.clone() : Body();
   auto t_fix = clock::now();
   BeautifyReport r = beautify(model->body, choice->tol);
   const double fix_s = secs(t_fix);
@@ -132,6 +140,12 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
       err << "kintsugi beautify: cannot write " << rp << "\n";
       return kExitBadInput;
     }
+  }
+  if (page && !write_report_page(page_from_beautify(before, model->body, std::filesystem::path(in).filename().string(),
+                                                    model->units, choice->tol, r),
+                                 {args.value("--html"), args.value("--png")}, in, &error)) {
+    err << "kintsugi beautify: " << error << "\n";
+    return kExitBadInput;
   }
   out << "tolerance " << choice->tol.length << " " << model->units << ": " << r.repaired() << " repaired, "
       << r.not_repaired() << " not repaired; faces " << r.counts_before.faces << " -> " << r.counts_after.faces

@@ -29,5 +29,6 @@ int cmd_convert(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_beautify(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_demo(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_audit(const std::vector<std::string>&, std::ostream&, std::ostream&);
+int cmd_view(const std::vector<std::string>&, std::ostream&, std::ostream&);
 
 }  // namespace kintsugi::cli

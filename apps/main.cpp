@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
       {"audit", "check the paper's Table 1 (the order of the passes) on random defective models", cmd_audit},
       {"convert", "convert between .json, .step/.stp and .brep", cmd_convert},
       {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
+      {"view", "write a page (HTML, PNG) showing a model and its problems", cmd_view},
   };
   return table;
 }

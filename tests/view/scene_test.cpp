@@ -1,0 +1,155 @@
+// view/: tessellation within the chordal tolerance, the scene's marks, determinism and
+// the page's escaping. The page itself is tested in a browser (browser_test.py).
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+#include "kernel/builders.h"
+#include "view/html_page.h"
+#include "view/scene.h"
+#include "view/tessellate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace kintsugi::view {
+namespace {
+
+// Every mesh vertex lies on the face's surface, and every triangle's centre (where a
+// flat triangle strays furthest from a convex surface) within the chordal tolerance.
+void expect_within_chordal(const Body& b, double chordal) {
+  for (FaceH f : b.faces()) {
+    const FaceMesh m = tessellate_face(b, f, chordal);
+    ASSERT_TRUE(m.problem.empty()) << f << ": " << m.problem;
+    ASSERT_FALSE(m.triangles.empty()) << f;
+    const geo::Surface& s = b.surface(f);
+    for (const geo::Vec3& p : m.vertices) EXPECT_LT(std::abs(geo::signed_distance(s, p)), 1e-9) << f;
+    double worst = 0, area = 0;
+    for (const auto& t : m.triangles) {
+      const geo::Vec3 &a = m.vertices[t[0]], &c = m.vertices[t[1]], &d = m.vertices[t[2]];
+      worst = std::max(worst, std::abs(geo::signed_distance(s, (a + c + d) / 3)));
+      area += 0.5 * (c - a).cross(d - a).norm();
+    }
+    EXPECT_LE(worst, chordal) << f;
+    // The mesh's area approaches the face's: chords are shorter than arcs by ~chordal/r.
+    const double exact = face_measure(b, f, 1e-4).area;
+    EXPECT_NEAR(area, exact, 0.005 * exact) << f;
+  }
+}
+
+TEST(Tessellate, CurvedFacesWithinTheChordalTolerance) {
+  expect_within_chordal(build::sphere(2.0), 1e-3);
+  expect_within_chordal(build::cylinder(1.0, 3.0), 1e-3);
+  expect_within_chordal(build::cone(1.5, 2.0), 1e-3);
+  expect_within_chordal(build::torus(3.0, 1.0), 1e-2);
+}
+
+TEST(Tessellate, FinerToleranceMoreTriangles) {
+  const Body b = build::sphere(1.0);
+  const FaceH f = b.faces().front();
+  EXPECT_GT(tessellate_face(b, f, 1e-4).triangles.size(), 2 * tessellate_face(b, f, 1e-2).triangles.size());
+}
+
+TEST(Tessellate, PlanarFacesNeedNoSteinerPoints) {
+  const Body b = build::box(1, 2, 3);
+  for (FaceH f : b.faces()) {
+    const FaceMesh m = tessellate_face(b, f, 1e-3);
+    EXPECT_EQ(m.vertices.size(), 4u) << f;
+    EXPECT_EQ(m.triangles.size(), 2u) << f;
+  }
+}
+
+TEST(Tessellate, AngleStep) {
+  for (double r : {0.1, 1.0, 10.0}) {
+    const double a = angle_step(r, 1e-3 * r);
+    EXPECT_NEAR(r * (1 - std::cos(a / 2)), 1e-3 * r, 1e-12 * r);
+  }
+  EXPECT_EQ(angle_step(1.0, 10.0), 0.5);     // coarser than a chord of half a radian is never taken
+  EXPECT_EQ(angle_step(1.0, 1e-12), 0.01);  // nor finer than 629 segments a turn
+  EXPECT_EQ(angle_step(0.0, 1e-3), 0.5);
+}
+
+nlohmann::json box_scene(const Body& b, std::vector<ProblemEntry> problems) {
+  PageInput in;
+  in.title = "box <1>";
+  in.tolerance = 1e-3;
+  in.models.push_back({"model", &b, true});
+  in.problems = std::move(problems);
+  return scene_json(in);
+}
+
+TEST(Scene, MarksWhatEachElementIs) {
+  const Body b = build::box();
+  ProblemEntry p;
+  p.type = "small_face";
+  p.elements = {b.faces()[2].str(), b.edges()[3].str(), b.vertices()[1].str(), "f999", "q1"};
+  p.measure = 1e-7;
+  const nlohmann::json s = box_scene(b, {p});
+  ASSERT_EQ(s["problems"].size(), 1u);
+  const auto& mark = s["problems"][0]["marks"][0];
+  EXPECT_EQ(mark["faces"], nlohmann::json::array({2}));
+  EXPECT_EQ(mark["lines"].size(), 6u);        // a straight edge: one segment
+  EXPECT_EQ(mark["points"].size(), 3u * 3u);  // its two ends and the vertex
+  EXPECT_EQ(mark["missing"], nlohmann::json::array({"f999", "q1"}));
+  EXPECT_EQ(s["models"][0]["faces"], 6);
+}
+
+TEST(Scene, GapsAreOutlinedNotTinted) {
+  const Body b = build::box();
+  ProblemEntry p;
+  p.type = "face_gap";
+  p.elements = {b.faces()[0].str()};
+  const nlohmann::json s = box_scene(b, {p});
+  EXPECT_TRUE(s["problems"][0]["marks"][0]["faces"].empty());
+}
+
+TEST(Scene, RepairedProblemsAreNotMarkedAfter) {
+  const Body before = build::box(), after = build::box();
+  PageInput in;
+  in.models = {{"before", &before, true}, {"after", &after, false}};
+  ProblemEntry fixed, left;
+  fixed.type = left.type = "short_edge";
+  fixed.elements = {"e1"};
+  left.elements = {"e2"};
+  fixed.action = "repaired";
+  fixed.resolved = true;
+  left.action = "not repaired";
+  in.problems = {fixed, left};
+  const nlohmann::json s = scene_json(in);
+  EXPECT_EQ(s["problems"][0]["marks"].size(), 1u);
+  EXPECT_EQ(s["problems"][1]["marks"].size(), 2u);
+}
+
+TEST(Scene, SameInputSameBytes) {
+  const Body b = build::torus(3, 1);
+  ProblemEntry p;
+  p.type = "sliver_face";
+  p.elements = {b.faces().front().str()};
+  EXPECT_EQ(html_page(box_scene(b, {p})), html_page(box_scene(b, {p})));
+}
+
+TEST(Scene, NeedsAModel) {
+  EXPECT_THROW(scene_json(PageInput{}), std::invalid_argument);
+}
+
+TEST(Page, TextCannotEndTheScriptEarly) {
+  const Body b = build::box();
+  ProblemEntry p;
+  p.type = "</script><script>alert(1)</script>";
+  p.elements = {"f0"};
+  const nlohmann::json scene = box_scene(b, {p});
+  const std::string page = html_page(scene);
+  // The browser ends the element at the first "</script>": what is before it must be
+  // the whole scene.
+  const std::string open = "id=\"scene\">";
+  const auto start = page.find(open);
+  ASSERT_NE(start, std::string::npos);
+  const auto end = page.find("</script>", start);
+  const std::string inlined = page.substr(start + open.size(), end - start - open.size());
+  EXPECT_EQ(inlined.find('<'), std::string::npos);
+  ASSERT_TRUE(nlohmann::json::accept(inlined));
+  EXPECT_EQ(nlohmann::json::parse(inlined), scene);
+  EXPECT_NE(page.find("<title>box &lt;1&gt; - kintsugi</title>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kintsugi::view
