@@ -3,6 +3,7 @@
 // invariant with a raw edit below the operators (tests/invariants/raw_body.h), and
 // expects a non-empty list of violations that all carry that code — the invariant is
 // caught, and no other invariant is blamed for it.
+#include "invariants/assemble.h"
 #include "invariants/topology_check.h"
 #include "kernel/assemble.h"
 #include "kernel/builders.h"
