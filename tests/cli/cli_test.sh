@@ -31,7 +31,7 @@ expect 2 "unknown verb" -- "$K" frobnicate
 contains "unknown verb" "unknown verb is named"
 # Every verb the top-level help lists is covered here; each verb's --help exits 0, shows
 # its usage line and names each of its options.
-verbs_here="generate check inject detect beautify demo audit convert measure"
+verbs_here="generate check inject detect beautify demo audit convert measure view"
 "$K" --help >"$dir/top" 2>&1
 for verb in $(sed -n 's/^  \([a-z]\+\) .*/\1/p' "$dir/top"); do
   case " $verbs_here " in *" $verb "*) pass=$((pass + 1)) ;; *) fail=$((fail + 1)); echo "FAIL: verb $verb has no tests here" ;; esac
@@ -47,6 +47,7 @@ options_of() {  # one per line
     audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" ;;
     convert) printf '%s\n' "IN OUT" ;;
     measure) printf '%s\n' "--json" "--tol T" ;;
+    view) printf '%s\n' "--tol T" "--chordal C" "-o PAGE.html" "--png" ;;
   esac
 }
 for verb in $verbs_here; do
