@@ -29,7 +29,7 @@ LAYERS = [
     ("kernel",),
     ("invariants",),
     ("problems",),
-    ("zoo", "io"),
+    ("zoo", "io", "view"),
     ("repair",),
     ("audit",),
     ("apps",),
