@@ -134,7 +134,7 @@ Child spawn_child(const std::string& exe, const Job& job, const Limits& limits, 
   if (c.pid < 0) throw std::runtime_error(std::string("cannot start a child process: ") + std::strerror(errno));
   ::setpgid(c.pid, c.pid);  // also here: no race with an early kill
   c.pidfd = int(::syscall(SYS_pidfd_open, c.pid, 0));
-  c.deadline = limits.timeout_seconds > 0
+  c.deadline = limits.timeout_seconds > 0 && limits.timeout_seconds < 1e9  // beyond: none (and no overflow)
                    ? c.start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(limits.timeout_seconds))
                    : clock::time_point::max();
   return c;
@@ -183,7 +183,8 @@ std::optional<nlohmann::json> reap_child(Child& c, const Limits& limits) {
       if (!last.empty()) e += "; last output: " + last;
       entry = entry_for(c, "crashed", e, seconds);
     } else {
-      entry = entry_for(c, result["status"].get<std::string>(), result.value("error", std::string()), seconds);
+      const auto& e = result.value("error", nlohmann::json());
+      entry = entry_for(c, result["status"].get<std::string>(), e.is_string() ? e.get<std::string>() : "", seconds);
       for (const char* k : {"problems_before", "problems_after", "tolerance"})
         if (result.contains(k)) entry[k] = result[k];
       if (result["status"] != "failed") entry["output"] = c.job.input;
@@ -225,6 +226,10 @@ int run_batch_file(const std::vector<std::string>& argv, std::ostream& /*out*/, 
   }
   const std::string in = args.positional()[0], out_path = args.positional()[1], result_path = args.positional()[2];
   auto given = args.number("--tol", 0, &error);
+  if (!given) {
+    err << "kintsugi batch-file: " << error << "\n";
+    return kExitBadInput;
+  }
   auto write_result = [&](const nlohmann::json& j) {
     std::ofstream f(result_path);
     f << j.dump() << "\n";

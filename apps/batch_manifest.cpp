@@ -5,6 +5,7 @@
 #include "problems/problem_type.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -177,7 +178,7 @@ Summary finish_run(const fs::path& manifest, double wall_seconds, int jobs, std:
     << s.json["files_per_second_this_run"].get<double>() << " files/s, " << jobs << " job(s)); manifest "
     << manifest.string() << ", summary " << summary_file.string() << "\n";
   s.table = t.str();
-  io::write_file_atomically(summary_file.string(), s.json.dump(2) + "\n", error);
+  (void)io::write_file_atomically(summary_file.string(), s.json.dump(2) + "\n", error);
   return s;
 }
 

@@ -13,6 +13,7 @@
 #include <ostream>
 #include <poll.h>
 #include <sstream>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
@@ -47,7 +48,7 @@ const char* kHelp =
     "2 bad usage.\n";
 
 std::atomic<int> g_stop_signal{0};
-extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+void on_stop_signal(int sig) { g_stop_signal = sig; }
 
 std::string clock_text(double seconds) {
   long s = long(seconds + 0.5);

@@ -5,7 +5,6 @@
 #include "bindings/bindings.h"
 
 #include <pybind11/stl.h>
-#include <pybind11/stl/filesystem.h>
 
 namespace kintsugi::python {
 
