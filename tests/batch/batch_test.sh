@@ -119,6 +119,14 @@ mkdir -p "$dir/goodin" && cp -r "$in/paper" "$in/cad" "$dir/goodin/"
 "$K" batch "$dir/goodin" "$dir/goodout" --resume >"$dir/out" 2>&1; code=$?
 [ "$code" -eq 0 ] && grep -q "6 file(s) already in" "$dir/out" && grep -q "^0 file(s)" "$dir/out" && ok || bad "resume of a finished run ($code)"
 
+# --- on a terminal: a progress bar redrawn in place, no per-file lines
+if command -v script >/dev/null; then
+  script -qec "'$K' batch '$dir/goodin' '$dir/ttyout' --jobs 2" /dev/null >"$dir/tty.out" 2>&1
+  grep -q $'\r\[#*\.*\] [0-9]*/6' "$dir/tty.out" && ok || bad "a progress bar on a terminal"
+  grep -q "files/s" "$dir/tty.out" && ok || bad "the bar shows the rate"
+  ! grep -q "\[1/6\] " "$dir/tty.out" && ok || bad "no per-file lines on a terminal"
+fi
+
 # --- shards: two shards cover the files once
 "$K" batch "$in" "$dir/shards" --shard 0/2 --manifest "$dir/shards/a.jsonl" "${opts[@]}" >/dev/null 2>&1
 "$K" batch "$in" "$dir/shards" --shard 1/2 --manifest "$dir/shards/b.jsonl" "${opts[@]}" >/dev/null 2>&1
