@@ -147,9 +147,10 @@ void kill_child(Child& c) {
 }
 
 std::optional<nlohmann::json> reap_child(Child& c, const Limits& limits) {
-  int status = 0;
-  pid_t r = ::waitpid(c.pid, &status, WNOHANG);
-  if (r == 0) {
+  // Peek without reaping: while the child is a zombie its pid (and so its process group
+  // id) cannot be reused, so what it left running in its group can still be killed safely.
+  siginfo_t info{};
+  if (::waitid(P_PID, id_t(c.pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == 0) {
     if (!c.killed_for_timeout && clock::now() >= c.deadline) {
       c.killed_for_timeout = true;
       kill_child(c);
@@ -160,6 +161,8 @@ std::optional<nlohmann::json> reap_child(Child& c, const Limits& limits) {
   if (c.pidfd >= 0) ::close(c.pidfd);
   c.pidfd = -1;
   ::kill(-c.pid, SIGKILL);  // anything the child left behind in its group
+  int status = 0;
+  pid_t r = ::waitpid(c.pid, &status, 0);
   nlohmann::json entry;
   std::error_code ec;
   if (r < 0) {
