@@ -38,12 +38,14 @@ class UsageError(Exception):
 
 
 def run(in_dir, out_dir, *, scheduler=None, workers=2, tol=None, timeout=600.0, max_memory=0, resume=False,
-        manifest=None, out=sys.stdout, err=sys.stderr):
+        manifest=None, out=None, err=None):
     """Beautify every model under in_dir into out_dir on a Dask cluster. Returns the exit
     code of `kintsugi batch`: 0, or 3 when some file failed, timed out or crashed.
     Raises UsageError where the CLI exits with 2."""
     from distributed import Client, LocalCluster, as_completed
 
+    out = out or sys.stdout
+    err = err or sys.stderr
     in_dir, out_dir = os.path.abspath(in_dir), os.path.abspath(out_dir)
     if not os.path.isdir(in_dir):
         raise UsageError(f"{in_dir}: not a folder")
