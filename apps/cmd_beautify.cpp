@@ -1,13 +1,9 @@
+#include "apps/api.h"
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "apps/model_files.h"
-#include "apps/report_json.h"
 #include "apps/report_page.h"
-#include "apps/tolerance_choice.h"
-#include "repair/beautify.h"
 #include "repair/pass.h"
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -49,16 +45,9 @@ const std::string kHelp =
     "                   chromium, or the browser named in KINTSUGI_CHROMIUM)\n\n"
     "Exit: 0 written (whether or not every problem was repaired); 2 bad input or usage.\n";
 
-nlohmann::json problem_counts(const std::array<int, 11>& c) {
-  nlohmann::json j = nlohmann::json::object();
-  for (ProblemType t : kAllProblemTypes) j[problem_name(t)] = c[std::size_t(problem_order(t) - 1)];
-  return j;
-}
 }  // namespace
 
 int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
-  using clock = std::chrono::steady_clock;
-  auto secs = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
   Args args;
   std::string error;
   if (!args.parse(argv, {"--tol", "-o", "--report", "--html", "--png"}, {"--help"}, &error)) {
@@ -79,61 +68,23 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     return kExitBadInput;
   }
   const std::string in = args.positional()[0], out_path = *args.value("-o");
-  auto t_read = clock::now();
-  auto model = load_model(in, &error);
-  if (!model) {
-    err << "kintsugi beautify: " << error << "\n";
+  if (args.has("--report") && *args.value("--report") == in) {
+    err << "kintsugi beautify: the report would overwrite the input\n";
     return kExitBadInput;
   }
-  const double read_s = secs(t_read);
-  auto choice = choose_tolerance(*model, args.has("--tol") ? given : std::nullopt, &error);
-  if (!choice) {
-    err << "kintsugi beautify: " << error << "\n";
-    return kExitBadInput;
-  }
-  if (choice->source != "--tol")
-    err << "kintsugi beautify: tolerance " << choice->tol.length << " " << model->units << " from " << choice->source << "\n";
   const bool page = args.has("--html") || args.has("--png");
-  const Body before = page ? model->body.clone() : Body();
-  auto t_fix = clock::now();
-  BeautifyReport r = beautify(model->body, choice->tol);
-  const double fix_s = secs(t_fix);
-  model->meta["tolerance"] = choice->tol.length;
-  model->meta.erase("defects");  // the injector's record no longer describes the model
-  auto t_write = clock::now();
-  if (!save_model(*model, out_path, in, &error)) {
-    err << "kintsugi beautify: " << error << "\n";
+  std::string note;
+  nlohmann::json j;
+  api::BeautifyDetail detail;  // filled only for the page, which draws before and after
+  try {
+    j = api::beautify_file(in, out_path, args.has("--tol") ? given : std::nullopt, {}, &note, page ? &detail : nullptr);
+  } catch (const api::Error& e) {
+    err << "kintsugi beautify: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const double write_s = secs(t_write);
+  if (!note.empty()) err << "kintsugi beautify: " << note << "\n";
   if (args.has("--report")) {
-    nlohmann::json j;
-    j["tolerance"] = choice->tol.length;
-    j["units"] = model->units;
-    j["problems"] = nlohmann::json::array();
-    for (const RepairEntry& p : r.problems)
-      j["problems"].push_back({{"type", problem_name(p.problem.type)},
-                               {"elements", element_names(p.problem)},
-                               {"action", outcome_name(p.outcome)},
-                               {"operators", p.operators},
-                               {"reason", p.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.reason)},
-                               {"deviation", p.deviation},
-                               {"note", p.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.note)}});
-    j["counts_before"] = counts_json(r.counts_before);
-    j["counts_after"] = counts_json(r.counts_after);
-    j["problems_before"] = problem_counts(r.problems_before);
-    j["problems_after"] = problem_counts(r.problems_after);
-    j["left"] = nlohmann::json::array();
-    for (const Problem& p : r.left) j["left"].push_back({{"type", problem_name(p.type)}, {"elements", element_names(p)}});
-    j["max_deviation"] = r.max_deviation;
-    j["max_deviation_elements"] = r.max_elements;
-    j["seconds"] = {{"read", read_s}, {"beautify", fix_s}, {"write", write_s}, {"passes", nlohmann::json::object()}};
-    for (ProblemType t : kAllProblemTypes) j["seconds"]["passes"][problem_name(t)] = r.seconds[std::size_t(problem_order(t) - 1)];
     const std::string rp = *args.value("--report");
-    if (rp == in) {
-      err << "kintsugi beautify: the report would overwrite the input\n";
-      return kExitBadInput;
-    }
     std::ofstream f(rp);
     f << j.dump(2) << "\n";
     if (!f) {
@@ -141,21 +92,27 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
       return kExitBadInput;
     }
   }
-  if (page && !write_report_page(page_from_beautify(before, model->body, std::filesystem::path(in).filename().string(),
-                                                    model->units, choice->tol, r),
-                                 {args.value("--html"), args.value("--png")}, in, &error)) {
-    err << "kintsugi beautify: " << error << "\n";
-    return kExitBadInput;
+  if (page) {
+    if (!write_report_page(page_from_beautify(detail.before, detail.after, std::filesystem::path(in).filename().string(),
+                                              j["units"].get<std::string>(), detail.tol, detail.report),
+                           {args.value("--html"), args.value("--png")}, in, &error)) {
+      err << "kintsugi beautify: " << error << "\n";
+      return kExitBadInput;
+    }
   }
-  out << "tolerance " << choice->tol.length << " " << model->units << ": " << r.repaired() << " repaired, "
-      << r.not_repaired() << " not repaired; faces " << r.counts_before.faces << " -> " << r.counts_after.faces
-      << ", edges " << r.counts_before.edges << " -> " << r.counts_after.edges << "; max deviation " << r.max_deviation
-      << "\n";
-  for (const RepairEntry& p : r.problems)
-    if (p.left() || !p.note.empty()) {
-      out << (p.left() ? "  not repaired: " : "  repaired: ") << problem_name(p.problem.type) << " at";
-      for (const auto& e : p.problem.elements) out << " " << element_name(e);
-      out << ": " << (p.left() ? p.reason : p.note) << "\n";
+  // The summary is read from the report, so it says exactly what the report says.
+  out << "tolerance " << j["tolerance"].get<double>() << " " << j["units"].get<std::string>() << ": "
+      << api::repaired_count(j) << " repaired, " << api::not_repaired_count(j) << " not repaired; faces "
+      << j["counts_before"]["faces"] << " -> " << j["counts_after"]["faces"] << ", edges "
+      << j["counts_before"]["edges"] << " -> " << j["counts_after"]["edges"] << "; max deviation "
+      << j["max_deviation"].get<double>() << "\n";
+  for (const auto& p : j["problems"])
+    if (p["action"] == "not repaired" || !p["note"].is_null()) {
+      const bool left = p["action"] == "not repaired";
+      out << (left ? "  not repaired: " : "  repaired: ") << p["type"].get<std::string>() << " at";
+      for (const auto& e : p["elements"]) out << " " << e.get<std::string>();
+      const auto& why = left ? p["reason"] : p["note"];
+      out << ": " << (why.is_null() ? std::string() : why.get<std::string>()) << "\n";
     }
   return kExitOk;
 }

@@ -3,11 +3,6 @@
 #include "apps/model_files.h"
 #include "apps/report_json.h"
 #include "apps/tolerance_choice.h"
-#include "invariants/geometry_check.h"
-#include "invariants/topology_check.h"
-#ifdef KINTSUGI_HAVE_OCCT
-#include "io/occt/exchange.h"
-#endif
 
 #include <ostream>
 
@@ -68,39 +63,17 @@ int cmd_check(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     err << "kintsugi check: " << error << "\n";
     return kExitBadInput;
   }
-  const Body& b = model->body;
-  std::vector<Violation> violations = check_topology(b);
-  GeometryReport geometry;
-  // Geometry is only meaningful on a topologically valid body (walks need closed loops).
-  if (violations.empty()) {
-    geometry = check_geometry(b, choice->tol.precision);
-    violations.insert(violations.end(), geometry.violations.begin(), geometry.violations.end());
-  }
-  bool valid = violations.empty();
-  nlohmann::json occt;
-#ifdef KINTSUGI_HAVE_OCCT
-  if (args.has("--occt")) {
-    io::OcctVerdict v = io::occt_check(b);
-    occt = {{"valid", v.valid}, {"problems", v.problems}};
-  }
-#endif
-  Counts c = b.counts();
+  CheckOutcome c = check_body(model->body, choice->tol, args.has("--occt"));
+  const bool valid = c.valid;
+  const GeometryReport& geometry = c.geometry;
+  const auto& violations = c.violations;
+  const nlohmann::json& occt = c.occt;
   if (args.has("--json")) {
-    nlohmann::json j;
-    j["valid"] = valid;
-    j["counts"] = counts_json(c);
-    j["violations"] = nlohmann::json::array();
-    for (const auto& v : violations) j["violations"].push_back(violation_json(v));
-    j["max_deviation"] = geometry.max_deviation;
-    j["max_deviation_elements"] = geometry.max_elements;
-    j["precision"] = choice->tol.precision;
-    j["tolerance_source"] = choice->source;
-    if (!occt.is_null()) j["occt"] = occt;
-    out << j.dump(2) << "\n";
+    out << check_json(c, *choice).dump(2) << "\n";
   } else {
     out << path << ": " << (valid ? "valid" : "INVALID") << "\n"
-        << "  vertices " << c.vertices << ", edges " << c.edges << ", faces " << c.faces << ", loops " << c.loops
-        << ", shells " << c.shells << ", border cycles " << c.border_cycles << "\n";
+        << "  vertices " << c.counts.vertices << ", edges " << c.counts.edges << ", faces " << c.counts.faces
+        << ", loops " << c.counts.loops << ", shells " << c.counts.shells << ", border cycles " << c.counts.border_cycles << "\n";
     out << "  largest geometric deviation " << geometry.max_deviation;
     for (const auto& e : geometry.max_elements) out << " " << e;
     out << " (precision " << choice->tol.precision << ", from " << choice->source << ")\n";

@@ -1,8 +1,6 @@
+#include "apps/api.h"
 #include "apps/args.h"
 #include "apps/commands.h"
-#include "apps/model_files.h"
-#include "apps/tolerance_choice.h"
-#include "repair/detect.h"
 
 #include <iomanip>
 #include <ostream>
@@ -43,42 +41,27 @@ int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ost
     err << "kintsugi detect: " << (error.empty() ? "--tol must be a positive number" : error) << "\n";
     return kExitBadInput;
   }
-  auto model = load_model(args.positional()[0], &error);
-  if (!model) {
-    err << "kintsugi detect: " << error << "\n";
+  std::string note;
+  nlohmann::json j;
+  try {
+    j = api::detect(api::read_model(args.positional()[0]), args.has("--tol") ? given : std::nullopt, &note);
+  } catch (const api::Error& e) {
+    err << "kintsugi detect: " << e.what() << "\n";
     return kExitBadInput;
   }
-  auto choice = choose_tolerance(*model, args.has("--tol") ? given : std::nullopt, &error);
-  if (!choice) {
-    err << "kintsugi detect: " << error << "\n";
-    return kExitBadInput;
-  }
-  if (choice->source != "--tol")
-    err << "kintsugi detect: tolerance " << choice->tol.length << " " << model->units << " from " << choice->source << "\n";
-  Detection d = detect(model->body, choice->tol);
+  if (!note.empty()) err << "kintsugi detect: " << note << "\n";
   if (args.has("--json")) {
-    nlohmann::json j;
-    j["tolerance"] = choice->tol.length;
-    j["units"] = model->units;
-    j["problems"] = nlohmann::json::array();
-    for (const Problem& p : d.problems)
-      j["problems"].push_back({{"type", problem_name(p.type)},
-                               {"elements", element_names(p)},
-                               {"measure", p.measure},
-                               {"measure_name", measure_name(p.measure_kind)},
-                               {"subcase", subcase_name(p).empty() ? nlohmann::json(nullptr) : nlohmann::json(subcase_name(p))}});
-    j["counts"] = nlohmann::json::object();
-    for (ProblemType t : kAllProblemTypes) j["counts"][problem_name(t)] = d.count(t);
     out << j.dump(2) << "\n";
     return kExitOk;
   }
-  out << "tolerance " << choice->tol.length << " " << model->units << ": " << d.problems.size() << " problem(s)\n";
-  for (const Problem& p : d.problems) {
-    out << "  " << std::left << std::setw(20) << problem_name(p.type) << " " << measure_name(p.measure_kind) << " "
-        << p.measure;
+  out << "tolerance " << j["tolerance"].get<double>() << " " << j["units"].get<std::string>() << ": "
+      << j["problems"].size() << " problem(s)\n";
+  for (const auto& p : j["problems"]) {
+    out << "  " << std::left << std::setw(20) << p["type"].get<std::string>() << " "
+        << p["measure_name"].get<std::string>() << " " << p["measure"].get<double>();
     out << "  at";
-    for (const auto& e : p.elements) out << " " << element_name(e);
-    if (!subcase_name(p).empty()) out << "  (" << subcase_name(p) << ")";
+    for (const auto& e : p["elements"]) out << " " << e.get<std::string>();
+    if (!p["subcase"].is_null()) out << "  (" << p["subcase"].get<std::string>() << ")";
     out << "\n";
   }
   return kExitOk;

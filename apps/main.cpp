@@ -15,6 +15,8 @@ const std::vector<Command>& commands() {
       {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
       {"detect", "find the eleven kinds of topological problem", cmd_detect},
       {"beautify", "repair the topology with the passes listed below", cmd_beautify},
+      {"batch", "beautify every model in a folder, each in its own process", cmd_batch},
+      {"batch-file", "one file of a batch (run by batch)", cmd_batch_file, true},
       {"demo", "beautify the paper's test objects and compare with the expected counts", cmd_demo},
       {"audit", "check the paper's Table 1 (the order of the passes) on random defective models", cmd_audit},
       {"convert", "convert between .json, .step/.stp and .brep", cmd_convert},
@@ -27,7 +29,8 @@ const std::vector<Command>& commands() {
 namespace {
 void usage(std::ostream& os) {
   os << "usage: kintsugi VERB [options]   (kintsugi VERB --help for each verb)\n\nverbs:\n";
-  for (const Command& c : commands()) os << "  " << c.name << std::string(12 - std::string(c.name).size(), ' ') << c.summary << "\n";
+  for (const Command& c : commands())
+    if (!c.hidden) os << "  " << c.name << std::string(12 - std::string(c.name).size(), ' ') << c.summary << "\n";
   os << "\nrepair passes, in the order beautify runs them (the paper's Table 1):\n";
   for (kintsugi::ProblemType t : kintsugi::kAllProblemTypes) {
     const kintsugi::Pass* p = kintsugi::find_pass(t);
@@ -35,7 +38,7 @@ void usage(std::ostream& os) {
        << kintsugi::problem_name(t) << std::string(21 - std::string(kintsugi::problem_name(t)).size(), ' ')
        << (p ? p->summary : "(no pass yet: found and reported, not repaired)") << "\n";
   }
-  os << "\nExit codes: 0 success, 1 invalid model (check), 2 bad input or usage.\n";
+  os << "\nExit codes: 0 success, 1 invalid model (check), 2 bad input or usage, 3 some files failed (batch).\n";
 }
 }  // namespace
 
