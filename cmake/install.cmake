@@ -8,7 +8,7 @@
 include(CMakePackageConfigHelpers)
 
 set(KINTSUGI_COMPONENTS kintsugi_geometry kintsugi_kernel kintsugi_invariants kintsugi_problems kintsugi_zoo
-                        kintsugi_io kintsugi_repair kintsugi_audit kintsugi_cli)
+                        kintsugi_io kintsugi_view kintsugi_repair kintsugi_audit kintsugi_cli)
 if(TARGET kintsugi_occt)
   list(APPEND KINTSUGI_COMPONENTS kintsugi_occt)
 endif()
@@ -32,7 +32,7 @@ install(TARGETS ${KINTSUGI_COMPONENTS} kintsugi_all EXPORT kintsugiTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/kintsugi)
 install(TARGETS kintsugi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(dir geometry kernel invariants problems zoo io repair audit apps)
+foreach(dir geometry kernel invariants problems zoo io view repair audit apps)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/kintsugi
           FILES_MATCHING PATTERN "*.h")
 endforeach()

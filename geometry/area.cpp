@@ -100,9 +100,9 @@ bool in_region(const ParameterDomain& d, const Vec2& p) {
 
 // Steiner points on a regular grid inside the region, so that the triangles are small
 // in the angular directions (a few long triangles fanning out to a pole line would
-// otherwise each need thousands of pieces). Spacing: `step` for angles, step × radius
-// for lengths on cylinders and cones (roughly square in 3D); none for planes, whose area
-// element is constant. At most ~40000 points: coarser beyond that.
+// otherwise each need thousands of pieces). Spacing: `step` for angles; for lengths on
+// cylinders and cones step × radius or a quarter of the length, whichever is larger
+// (below); none for planes, whose area element is constant. At most ~40000 points: coarser beyond that.
 void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step) {
   if (std::holds_alternative<Plane>(s)) return;
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -110,6 +110,11 @@ void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step)
     for (const Vec2& p : poly) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const bool angular_v = std::holds_alternative<Sphere>(s) || std::holds_alternative<Torus>(s);
   double hu = step, hv = angular_v ? step : step * surface_scale(s);
+  // On cylinders and cones the area element does not depend on u and is at most linear
+  // in v, so the 7-point rule is exact on any triangle however long along v: rows are
+  // only there to stop triangles fanning out, and a few do. (Spacing v like u made a long
+  // thin fillet — a sliver — cost 40000 points, about a second per face.)
+  if (!angular_v) hv = std::max(hv, (hi.y() - lo.y()) / 4);
   if (!(hv > 0)) return;
   const double cells = (hi.x() - lo.x()) / hu * (hi.y() - lo.y()) / hv;
   if (cells > 40000) {
@@ -147,6 +152,16 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
     }
   } catch (const std::exception& e) {
     out.problem = std::string("could not triangulate the region in parameter space: ") + e.what();
+    return out;
+  }
+  if (cdt.dimension() < 2) {
+    // Every boundary point on one line of the parameter plane: the region has no
+    // interior (and CGAL's faces of a 1-dimensional triangulation have no neighbours to
+    // walk), so it measures zero.
+    std::size_t n = 0;
+    for (const auto& loop : loops)
+      for (const Vec3& p : loop) out.bounds.add(p), out.centroid += p, ++n;
+    if (n > 0) out.centroid /= double(n);
     return out;
   }
   add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);

@@ -8,6 +8,7 @@
 #include "repair/beautify.h"
 #include "repair/detect.h"
 #include "repair/pass.h"
+#include "tests/support/left_mismatch.h"
 #include "zoo/zoo.h"
 
 #include <gtest/gtest.h>
@@ -23,30 +24,7 @@ namespace {
 
 geo::Tolerances tol_for(const Body& b, double t) { return geo::Tolerances::for_model(t, model_size(b)); }
 
-std::vector<std::string> identities(const std::vector<Problem>& ps) {
-  std::vector<std::string> out;
-  for (const Problem& p : ps) {
-    std::string s = problem_name(p.type);
-    for (const std::string& e : element_names(p)) s += " " + e;
-    out.push_back(s);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += "  " + x + "\n";
-  return s;
-}
-
-// "left" against a fresh whole-body detection of the output.
-std::string left_mismatch(const Body& b, const geo::Tolerances& tol, const BeautifyReport& r) {
-  auto want = identities(detect(b, tol).problems);
-  auto got = identities(r.left);
-  if (want == got) return "";
-  return "detect() on the output:\n" + joined(want) + "report's left:\n" + joined(got);
-}
+using test::left_mismatch;
 
 TEST(PassRegistry, PassesAreInThePapersOrderOncePerType) {
   const auto& ps = passes();

@@ -53,6 +53,20 @@ TEST(Area, UnitSquareAndDisc) {
   EXPECT_NEAR(holed.bounds.diagonal(), std::sqrt(18.0), 1e-13);
 }
 
+// A loop whose points all lie on one line in parameter space (a face squeezed flat by a
+// repair): CGAL's triangulation is then 1-dimensional, with faces that have no
+// neighbours; walking them crashed the audit. Zero area, not a crash.
+TEST(Area, CollinearLoopMeasuresZero) {
+  const Plane p{Frame{Vec3(1, 2, 3), Vec3::UnitZ(), Vec3::UnitX()}};
+  const Cylinder c{Frame{Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX()}, 2.0};
+  for (const Surface& s : {Surface(p), Surface(c)}) {
+    const RegionMeasure m = measure_region(s, {loop(s, {Vec2(0, 0), Vec2(0.5, 0), Vec2(1, 0)}, 3)});
+    if (!m.ok()) continue;  // refusing the region is as good as measuring it
+    EXPECT_EQ(m.area, 0.0);
+    EXPECT_TRUE(m.mesh.triangles.empty());
+  }
+}
+
 TEST(Area, CylinderPatchBandAndSeam) {
   const Cylinder c{Frame{Vec3(0, 0, 1), Vec3::UnitX(), Vec3::UnitZ()}, 2.0};
   EXPECT_NEAR(measure_region(c, {rectangle(c, 0.5, 2.0, -1, 3)}).area, 2.0 * 1.5 * 4, 12 * 1e-10);
