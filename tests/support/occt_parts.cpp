@@ -1,0 +1,206 @@
+#include "tests/support/occt_parts.h"
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepFilletAPI_MakeChamfer.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepPrimAPI_MakeWedge.hxx>
+#include <BRep_Tool.hxx>
+#include <Precision.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Pnt.hxx>
+
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+namespace kintsugi::test {
+
+namespace {
+
+TopoDS_Shape box(double x, double y, double z, double dx, double dy, double dz) {
+  return BRepPrimAPI_MakeBox(gp_Pnt(x, y, z), dx, dy, dz).Shape();
+}
+TopoDS_Shape zcyl(double x, double y, double z, double r, double h) {
+  return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, z), gp::DZ()), r, h).Shape();
+}
+
+// Booleans leave faces split along the tools' seams; a modeller's part has one face per
+// surface patch, so same-domain faces and edges are unified (as a CAD system does).
+TopoDS_Shape unify(const TopoDS_Shape& s) {
+  ShapeUpgrade_UnifySameDomain u(s, true, true, false);
+  u.Build();
+  return u.Shape();
+}
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  BRepAlgoAPI_Fuse op(a, b);
+  if (!op.IsDone()) throw std::runtime_error("fuse failed");
+  return unify(op.Shape());
+}
+TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  BRepAlgoAPI_Cut op(a, b);
+  if (!op.IsDone()) throw std::runtime_error("cut failed");
+  return unify(op.Shape());
+}
+
+// The straight edges of s parallel to `dir` whose midpoint satisfies `pick`.
+template <class Pick>
+std::vector<TopoDS_Edge> edges_where(const TopoDS_Shape& s, const gp_Dir& dir, Pick pick) {
+  std::vector<TopoDS_Edge> out;
+  TopTools_IndexedMapOfShape m;
+  TopExp::MapShapes(s, TopAbs_EDGE, m);
+  for (int i = 1; i <= m.Extent(); ++i) {
+    TopoDS_Edge e = TopoDS::Edge(m(i));
+    TopoDS_Vertex a, b;
+    TopExp::Vertices(e, a, b);
+    if (a.IsNull() || b.IsNull()) continue;
+    gp_Pnt p = BRep_Tool::Pnt(a), q = BRep_Tool::Pnt(b);
+    if (p.Distance(q) < 1e-6) continue;
+    gp_Vec d(p, q);
+    if (std::abs(std::abs(d.Normalized().Dot(gp_Vec(dir))) - 1) > 1e-9) continue;
+    gp_Pnt mid((p.XYZ() + q.XYZ()) / 2);
+    if (pick(mid)) out.push_back(e);
+  }
+  return out;
+}
+
+TopoDS_Shape fillet(const TopoDS_Shape& s, const std::vector<TopoDS_Edge>& edges, double r) {
+  if (edges.empty()) throw std::runtime_error("no edges to fillet");
+  BRepFilletAPI_MakeFillet f(s);
+  for (const TopoDS_Edge& e : edges) f.Add(r, e);
+  f.Build();
+  if (!f.IsDone()) throw std::runtime_error("fillet failed");
+  return f.Shape();
+}
+
+TopoDS_Shape chamfer(const TopoDS_Shape& s, const std::vector<TopoDS_Edge>& edges, double d) {
+  if (edges.empty()) throw std::runtime_error("no edges to chamfer");
+  BRepFilletAPI_MakeChamfer c(s);
+  for (const TopoDS_Edge& e : edges) c.Add(d, e);
+  c.Build();
+  if (!c.IsDone()) throw std::runtime_error("chamfer failed");
+  return c.Shape();
+}
+
+// An L-bracket (base 120 x 60 x 12, upright 12 x 60 x 70) with a through hole in the base
+// and its four outer vertical base edges filleted.
+TopoDS_Shape bracket() {
+  TopoDS_Shape s = fuse(box(0, 0, 0, 120, 60, 12), box(0, 0, 0, 12, 60, 70));
+  s = cut(s, zcyl(75, 30, -5, 9, 30));
+  s = fillet(s, edges_where(s, gp::DZ(), [](const gp_Pnt& m) { return m.Z() < 12 && m.X() > 100; }), 8);
+  return s;
+}
+
+// A flange: disc r 70, 14 thick, centre bore r 22, six bolt holes r 6 on a 50 circle.
+TopoDS_Shape flange() {
+  TopoDS_Shape s = cut(zcyl(0, 0, 0, 70, 14), zcyl(0, 0, -5, 22, 30));
+  for (int i = 0; i < 6; ++i) {
+    double a = i * M_PI / 3;
+    s = cut(s, zcyl(50 * std::cos(a), 50 * std::sin(a), -5, 6, 30));
+  }
+  return s;
+}
+
+// A block 90 x 70 x 45 with its four top edges chamfered 6.
+TopoDS_Shape chamfered_block() {
+  TopoDS_Shape s = box(0, 0, 0, 90, 70, 45);
+  std::vector<TopoDS_Edge> top = edges_where(s, gp::DX(), [](const gp_Pnt& m) { return m.Z() > 44; });
+  for (const TopoDS_Edge& e : edges_where(s, gp::DY(), [](const gp_Pnt& m) { return m.Z() > 44; })) top.push_back(e);
+  return chamfer(s, top, 6);
+}
+
+// A shaft r 16, 120 long, ending in a cone frustum (r 16 -> 6 over 25), with a collar.
+TopoDS_Shape shaft() {
+  TopoDS_Shape s = zcyl(0, 0, 0, 16, 120);
+  s = fuse(s, BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 120), gp::DZ()), 16, 6, 25).Shape());
+  s = fuse(s, zcyl(0, 0, 30, 24, 15));
+  return s;
+}
+
+// A block 110 x 110 x 50 with a spherical pocket (r 35, centre 10 above the top face).
+TopoDS_Shape spherical_pocket() {
+  return cut(box(0, 0, 0, 110, 110, 50), BRepPrimAPI_MakeSphere(gp_Pnt(55, 55, 60), 35).Shape());
+}
+
+// A ring r 45, 40 high, bore r 25, with a toroidal groove (R 45, r 6) round its middle.
+TopoDS_Shape grooved_ring() {
+  TopoDS_Shape s = cut(zcyl(0, 0, 0, 45, 40), zcyl(0, 0, -5, 25, 50));
+  return cut(s, BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 20), gp::DZ()), 45, 6).Shape());
+}
+
+// A plate 150 x 100 x 20 with a rectangular pocket 70 x 40 x 10 and a step along one side.
+TopoDS_Shape pocketed_plate() {
+  TopoDS_Shape s = cut(box(0, 0, 0, 150, 100, 20), box(40, 30, 10, 70, 40, 20));
+  return cut(s, box(-1, -1, 12, 152, 16, 20));
+}
+
+// A block 100 x 100 x 30 with a countersunk hole (cone r 18 -> 8 over 10, bore r 8).
+TopoDS_Shape countersunk_block() {
+  TopoDS_Shape s = cut(box(0, 0, 0, 100, 100, 30), zcyl(50, 50, -5, 8, 50));
+  return cut(s, BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(50, 50, 20), gp::DZ()), 8, 18, 10).Shape());
+}
+
+// A plus-shaped slab: two crossing bars 140 x 40 x 25 (planar faces only, concave corners).
+TopoDS_Shape cross_slab() { return fuse(box(0, 50, 0, 140, 40, 25), box(50, 0, 0, 40, 140, 25)); }
+
+// A block 80 x 80 x 40 with its four vertical edges filleted r 10.
+TopoDS_Shape filleted_block() {
+  TopoDS_Shape s = box(0, 0, 0, 80, 80, 40);
+  return fillet(s, edges_where(s, gp::DZ(), [](const gp_Pnt&) { return true; }), 10);
+}
+
+// A post r 20, 80 high, with a hemispherical dome, standing on a base 90 x 90 x 15.
+TopoDS_Shape domed_post() {
+  TopoDS_Shape s = fuse(box(-45, -45, 0, 90, 90, 15), zcyl(0, 0, 15, 20, 80));
+  return fuse(s, BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 95), 20).Shape());
+}
+
+// A block 100 x 100 x 40 under a pyramid roof 30 high (apex of four triangles, degree 4).
+TopoDS_Shape roofed_block() {
+  // The wedge's y axis is N x X: with N = -y and X = x it is +z; its z then runs along -y.
+  gp_Ax2 frame(gp_Pnt(0, 100, 40), gp::DY().Reversed(), gp::DX());
+  TopoDS_Shape roof = BRepPrimAPI_MakeWedge(frame, 100, 30, 100, 50, 50, 50, 50).Shape();
+  return fuse(box(0, 0, 0, 100, 100, 40), roof);
+}
+
+}  // namespace
+
+std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
+  const std::vector<std::pair<std::string, std::function<TopoDS_Shape()>>> makers = {
+      {"bracket", bracket},
+      {"flange", flange},
+      {"chamfered_block", chamfered_block},
+      {"shaft", shaft},
+      {"spherical_pocket", spherical_pocket},
+      {"grooved_ring", grooved_ring},
+      {"pocketed_plate", pocketed_plate},
+      {"countersunk_block", countersunk_block},
+      {"cross_slab", cross_slab},
+      {"filleted_block", filleted_block},
+      {"domed_post", domed_post},
+      {"roofed_block", roofed_block},
+  };
+  std::vector<OcctPart> out;
+  for (const auto& [name, make] : makers) {
+    try {
+      out.push_back({name, make()});
+    } catch (const Standard_Failure& e) {
+      if (dropped) dropped->push_back(name + ": " + e.GetMessageString());
+    } catch (const std::exception& e) {
+      if (dropped) dropped->push_back(name + ": " + e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace kintsugi::test
