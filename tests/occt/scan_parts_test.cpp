@@ -28,6 +28,8 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
 #include <STEPControl_Writer.hxx>
 
 #include <gtest/gtest.h>
@@ -225,7 +227,9 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
     return judged(Verdict::invalid, "BRepCheck: " + (ov.problems.empty() ? std::string() : ov.problems[0]));
   if (!(c == want)) return judged(Verdict::counts, str(c) + " want " + str(want));
 
-  const double chordal = 0.05 * t;
+  // Tessellations within 0.1 t of the surfaces: the distances below are then exact to
+  // about 0.1 t either way, small against the tolerance they are compared with.
+  const double chordal = 0.1 * t;
   std::vector<FaceMesh> om = face_meshes(out, chordal), dm = face_meshes(designer, chordal);
   std::string why;
   std::vector<int> match = match_faces(om, dm, &why);
@@ -270,12 +274,13 @@ std::vector<Designer> designers() {
 constexpr double kPassRateFloor = 0.0;
 
 TEST(ScanParts, ScoreTable) {
+  Message::DefaultMessenger()->ChangePrinters().Clear();  // OpenCASCADE's transfer statistics
   std::vector<Designer> parts = designers();
   ASSERT_GE(parts.size(), 8u) << "fewer than 8 designer parts could be built and read";
   for (const Designer& d : parts)
     std::printf("part %-18s %s size %.0f\n", d.name.c_str(), str(d.body.counts()).c_str(), d.size);
 
-  int n = 48;
+  int n = 36;
   if (const char* e = std::getenv("KINTSUGI_SCAN_CASES")) n = std::max(1, std::atoi(e));
   std::uint64_t base = 1;
   if (const char* e = std::getenv("KINTSUGI_SCAN_SEED")) base = std::strtoull(e, nullptr, 10);
