@@ -265,7 +265,7 @@ KnownDefect apex_short_edge(Body& b, VertexH v, double length, Rng& rng) {
   // Some draws turn the planes so that three of the four meeting points are inside (the
   // tip is then a tiny triangle, not an edge): draw again.
   Config c;
-  for (int attempt = 0; attempt < 20 && c.j < 0; ++attempt) {
+  for (int attempt = 0; attempt < 50 && c.j < 0; ++attempt) {
     for (double& u : unit) u = rng.uniform(0.3, 1.0) * rng.sign();
     double theta = 1e-4 * length / reach;
     c = config(theta);
@@ -274,6 +274,15 @@ KnownDefect apex_short_edge(Body& b, VertexH v, double length, Rng& rng) {
       c = config(theta);
     }
     if (c.j >= 0 && std::abs((c.p1 - c.p2).norm() / length - 1) > 0.05) c.j = -1;
+    // A fitted plane stays within the scan's noise of the true one: no plane may turn
+    // away from its apex by more than about the edge's length (below the tolerance).
+    // When the turns nearly cancel, the edge is short only because the planes moved far
+    // together: the apex would then be off by many tolerances. Draw again. (The ends of
+    // the edge are held to the same bound: where the planes meet moves more than they do.)
+    const Vec3 at = b.point(v);
+    if (c.j >= 0 && (theta * reach > 1.2 * length || (c.p1 - at).norm() > 1.2 * length ||
+                     (c.p2 - at).norm() > 1.2 * length))
+      c.j = -1;
   }
   if (c.j < 0) throw Unsuitable("the turned planes at " + v.str() + " do not give one short edge");
   int j = c.j;
