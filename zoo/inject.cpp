@@ -10,6 +10,7 @@
 #include "zoo/defects_gaps.h"
 #include "zoo/defects_pinch.h"
 #include "zoo/defects_slivers.h"
+#include "zoo/paper_build.h"
 
 #include <algorithm>
 #include <cmath>
@@ -69,6 +70,9 @@ Vec3 centroid(const Body& b, FaceH f) {
 struct Site {
   std::function<KnownDefect(Body&)> make;
   std::string where;
+  // Where the designer's model is not the body before the defect (a pinch's block is a
+  // feature the designer made flush): makes it from the body before the defect.
+  std::function<void(Body&)> clean = {};
 };
 
 template <class H>
@@ -209,7 +213,8 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
           if (inset(b, f, c0) < tol || inset(b, f, c1) < tol) continue;
           make::PinchBlock k;
           k.s0 = s0, k.s1 = s1, k.off0 = offset, k.off1 = off1, k.height = w;
-          out.push_back({[=](Body& x) { return make::pinch_bossing(x, h, k, w); }, f.str()});
+          out.push_back({[=](Body& x) { return make::pinch_bossing(x, h, k, w); }, f.str(),
+                         [=](Body& x) { add_flush_block(x, h, k.s0, k.s1, std::max(k.off0, k.off1) + w, k.height); }});
         }
       }
       break;
@@ -223,7 +228,7 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
 }  // namespace
 
 std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const std::optional<std::string>& at,
-                               double tolerance, std::string* error) {
+                               double tolerance, std::string* error, Body* clean) {
   std::string why;
   auto fail = [&](const std::string& m) -> std::optional<Injected> {
     if (error) *error = m;
@@ -239,10 +244,16 @@ std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const
   for (const Site& s : candidates) {
     Transaction tx(b);
     try {
+      std::optional<Body> before;
+      if (clean && s.clean) before = b;
       KnownDefect d = s.make(b);
       std::vector<Violation> bad = check_topology(b);
       std::vector<std::string> off = geometry_offences(b, tols.precision);
       if (bad.empty() && off.empty()) {
+        if (before) {
+          s.clean(*before);
+          *clean = std::move(*before);
+        }
         tx.commit();
         return Injected{d, std::string(problem_name(t)) + " at " + s.where + " (size " + std::to_string(d.size) + ")"};
       }

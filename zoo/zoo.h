@@ -66,8 +66,11 @@ struct Injected {
 // On success the body passes check_topology and its geometry is consistent except at
 // the gap a gap type makes. Returns nullopt and sets *error (if given) when no place in
 // b suits the type; the body is then unchanged.
+// `clean` (if given) is set to the designer's model the defect stands for where that is
+// not b before the defect: a pinched face's block, which the designer made flush with the
+// edge it nearly touches (zoo/defects_pinch.h's clean twin). Otherwise it is left alone.
 std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const std::optional<std::string>& at,
-                               double tolerance, std::string* error);
+                               double tolerance, std::string* error, Body* clean = nullptr);
 
 // Geometric consistency as the zoo promises it: every vertex on the surfaces of its
 // faces and the curves of its edges, every straight edge's midpoint on both faces'
