@@ -327,8 +327,11 @@ void expect_case_passes(std::uint64_t base, int i) {
 // and left a ring of small faces pass 5 could not collapse, and a face turned inside out.
 TEST(ScanParts, SmallFaceNotchIsNotAPinch) { expect_case_passes(2, 64); }
 
-// Measured 2026-12-01 with `ctest --test-dir build -R ScanParts` (48 cases, seed base 1).
-constexpr double kPassRateFloor = 0.0;
+// Measured 2026-12-01 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
+// (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 24 of 26
+// judged cases passed (0.923; 10 skipped: no place for the defect). A drop below 0.9 means
+// a repair got worse on these parts.
+constexpr double kPassRateFloor = 0.9;
 
 TEST(ScanParts, ScoreTable) {
   std::vector<Designer> parts = designers();
