@@ -11,6 +11,7 @@
 #include "repair/beautify_detail.h"
 #include "repair/detect.h"
 #include "repair/pass.h"
+#include "repair/region_solve.h"
 
 #include <chrono>
 #include <deque>
@@ -67,10 +68,20 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   Transaction tx(b);
   std::string why, note;
   try {
+    // The faces the repair can act on, as they are before it: the solve's data terms.
+    detail::OriginalFaces original = detail::snapshot_near(b, p, tol);
     RepairContext call{b, p, tol, touched};
     why = pass.repair(call);
     note = call.note;
     if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
+    // Every pass ends here: the region's surfaces and vertices solved together so that
+    // the geometry agrees with the new topology to the modelling precision.
+    if (why.empty()) {
+      detail::RegionSolve solve = detail::solve_region(b, touched, original, tol);
+      why = solve.why;
+      entry.max_residual = solve.max_residual;
+      for (const auto& m : solve.moved) entry.surfaces_moved.push_back({m.face, m.distance});
+    }
   } catch (const std::exception& e) {
     why = std::string("geometry could not be computed: ") + e.what();
   }
@@ -90,6 +101,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     touched.clear();
     entry.reason = why;
     entry.deviation = 0.0;
+    entry.surfaces_moved.clear();
     return entry;
   }
   entry.operators = b.journal().op_names(tx.first_entry());
