@@ -80,6 +80,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
       detail::RegionSolve solve = detail::solve_region(b, touched, original, tol);
       why = solve.why;
       entry.max_residual = solve.max_residual;
+      entry.solve_seconds = solve.seconds;
       for (const auto& m : solve.moved) entry.surfaces_moved.push_back({m.face, m.distance});
     }
   } catch (const std::exception& e) {

@@ -48,6 +48,7 @@ struct RepairEntry {
   // distance left between a vertex and a surface of its faces.
   std::vector<std::pair<FaceH, double>> surfaces_moved = {};
   double max_residual = 0.0;
+  double solve_seconds = 0.0;  // wall time of that solve
 
   bool repaired() const { return outcome == Outcome::repaired; }
   bool left() const { return outcome == Outcome::refused || outcome == Outcome::no_pass; }

@@ -16,6 +16,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -46,6 +47,21 @@ std::vector<VertexH> face_vertices(const Body& b, FaceH f) {
       if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
     }
   return out;
+}
+
+// Whether f has at most `limit` corners, counted without walking past the limit: a large
+// face next to a repair (a plate with many holes) costs no more than a small one.
+bool few_corners(const Body& b, FaceH f, std::size_t limit) {
+  std::size_t n = 0;
+  for (LoopH l : b.loops_of(f)) {
+    HalfedgeH start = b.first(l), h = start;
+    if (!start.valid()) continue;
+    do {
+      if (++n > limit) return false;
+      h = b.next(h);
+    } while (h != start && h.valid());
+  }
+  return true;
 }
 
 void add_vertices(const Body& b, const Element& e, std::set<VertexH>& out) {
@@ -288,6 +304,8 @@ double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   return m;
 }
 
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol);
+
 }  // namespace
 
 OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Tolerances& tol) {
@@ -300,11 +318,12 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
     if (auto* f = std::get_if<FaceH>(&e)) ring1.insert(*f);
   ring2 = ring1;
   for (FaceH f : ring1)
-    for (VertexH v : face_vertices(b, f))
-      for (FaceH g : faces_around(b, v)) ring2.insert(g);
+    if (few_corners(b, f, kMaxSolvedFaceCorners))
+      for (VertexH v : face_vertices(b, f))
+        for (FaceH g : faces_around(b, v)) ring2.insert(g);
   OriginalFaces out;
   for (FaceH f : ring2) {
-    if (std::holds_alternative<std::monostate>(b.surface(f))) continue;
+    if (std::holds_alternative<std::monostate>(b.surface(f)) || !few_corners(b, f, kMaxSolvedFaceCorners)) continue;
     try {
       out[f] = OriginalFace{b.surface(f), samples_of(b, f, tol)};
     } catch (const std::exception&) {
@@ -315,6 +334,15 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
 }
 
 RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
+  const auto start = std::chrono::steady_clock::now();
+  RegionSolve out = solve_region_untimed(b, touched, original, tol);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
   RegionSolve out;
   std::set<FaceH> region;
   std::set<VertexH> verts;
@@ -336,8 +364,8 @@ RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& origina
     auto it = original.find(f);
     if (it == original.end() || it->second.samples.empty()) continue;
     if (!params_of(b.surface(f))) continue;
+    if (!few_corners(b, f, kMaxSolvedFaceCorners)) continue;
     auto corners = face_vertices(b, f);
-    if (corners.size() > kMaxSolvedFaceCorners) continue;
     faces.push_back(f);
     verts.insert(corners.begin(), corners.end());
   }
@@ -508,5 +536,7 @@ RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& origina
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace kintsugi::detail

@@ -45,6 +45,7 @@ struct RegionSolve {
   double max_residual = 0.0;        // largest distance of a region vertex from a surface of its faces, after
   std::vector<SurfaceMove> moved;   // each solved face, how far it moved
   int variable_faces = 0, variable_vertices = 0, residuals = 0;
+  double seconds = 0.0;             // wall time of the solve (docs/benchmarks.md)
 };
 
 // Solves the region of `touched` (the faces around its vertices and edges, and its faces)

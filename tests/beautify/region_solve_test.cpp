@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -252,6 +253,28 @@ TEST(BeautifySolve, ScalingModelAndToleranceTogetherGivesTheSameTopology) {
         if (b.alive(v)) worst = std::max(worst, (b.point(v) / k - ref.point(v)).norm());
       EXPECT_LE(worst, 1e-3 * m.tolerance) << "object " << n << " scaled by " << k;
     }
+  }
+}
+
+// A measurement, not a check (run with --gtest_also_run_disabled_tests): the solve's
+// time per repair on the scalable family at two sizes (docs/benchmarks.md).
+TEST(BeautifySolve, DISABLED_CostPerRepair) {
+  for (std::size_t faces : {1000u, 10000u, 100000u}) {
+    zoo::ZooModel m = zoo::family(faces, 0.2, 1);
+    geo::Tolerances tol = geo::Tolerances::for_model(m.tolerance, model_size(m.body));
+    BeautifyReport r = beautify(m.body, tol);
+    int attempts = 0, solves = 0;
+    double total = 0.0, worst = 0.0;
+    for (const auto& p : r.problems) {
+      if (p.outcome != Outcome::repaired && p.outcome != Outcome::refused) continue;
+      ++attempts;
+      solves += p.solve_seconds > 0;
+      total += p.solve_seconds;
+      worst = std::max(worst, p.solve_seconds);
+    }
+    std::printf("faces %zu: %d repairs attempted (%d repaired), solve %.3f ms mean, %.3f ms max, %.3f s total\n",
+                m.body.counts().faces, attempts, r.repaired(), attempts ? 1e3 * total / attempts : 0.0, 1e3 * worst,
+                total);
   }
 }
 
