@@ -215,7 +215,8 @@ T distance(Kind kind, T const* const* q, const T* x) {
     T v[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
     h = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
     T w[3] = {v[0] - h * d[0], v[1] - h * d[1], v[2] - h * d[2]};
-    rho = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    // (+1e-300: on the axis, a cone's apex, the derivative is 0·finite, not 0·∞.)
+    rho = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + 1e-300);
   };
   T h, rho;
   switch (kind) {
@@ -226,12 +227,12 @@ T distance(Kind kind, T const* const* q, const T* x) {
       return (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
     case Kind::sphere: {
       T d[3] = {x[0] - q[0][0], x[1] - q[0][1], x[2] - q[0][2]};
-      return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - q[1][0];
+      return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 1e-300) - q[1][0];
     }
     case Kind::torus: {
       axial(q[0], q[1], h, rho);
       T dr = rho - q[2][0];
-      return sqrt(dr * dr + h * h) - q[2][1];
+      return sqrt(dr * dr + h * h + 1e-300) - q[2][1];
     }
   }
   return T(0);
