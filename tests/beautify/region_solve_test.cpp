@@ -218,6 +218,7 @@ TEST(BeautifySolve, FourPinnedCornersNotOnOnePlaneAreNamed) {
   t.faces.insert(s.quad);
   detail::RegionSolve r = detail::solve_region(s.b, t, s.original, tol);
   ASSERT_FALSE(r.why.empty());
+  RecordProperty("why", r.why);
   for (VertexH v : s.corners) EXPECT_NE(r.why.find(v.str() + " on"), std::string::npos) << v << ": " << r.why;
   EXPECT_NE(r.why.find(s.quad.str()), std::string::npos) << r.why;
   std::string why;
