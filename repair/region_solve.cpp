@@ -17,8 +17,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -463,7 +461,6 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       ceres::Solve(options, &problem, &summary);
       if (hard >= w_hard) break;
     }
-    if (std::getenv("KINTSUGI_SOLVE_DEBUG")) std::fprintf(stderr, "%s\n", summary.FullReport().c_str());
 
     // The solved geometry, judged geometrically (not by the weighted cost).
     Outcome o;
