@@ -83,14 +83,19 @@ nlohmann::json beautify_json(const BeautifyReport& r, const ToleranceChoice& tol
   j["tolerance"] = tol.tol.length;
   j["units"] = units;
   j["problems"] = nlohmann::json::array();
-  for (const RepairEntry& p : r.problems)
+  for (const RepairEntry& p : r.problems) {
+    nlohmann::json moved = nlohmann::json::array();
+    for (auto [f, d] : p.surfaces_moved) moved.push_back({{"face", f.str()}, {"distance", d}});
     j["problems"].push_back({{"type", problem_name(p.problem.type)},
                              {"elements", element_names(p.problem)},
                              {"action", outcome_name(p.outcome)},
                              {"operators", p.operators},
                              {"reason", null_if_empty(p.reason)},
                              {"deviation", p.deviation},
+                             {"surfaces_moved", moved},
+                             {"max_residual", p.max_residual},
                              {"note", null_if_empty(p.note)}});
+  }
   j["counts_before"] = counts_json(r.counts_before);
   j["counts_after"] = counts_json(r.counts_after);
   j["problems_before"] = problem_counts_json(r.problems_before);

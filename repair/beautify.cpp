@@ -11,6 +11,7 @@
 #include "repair/beautify_detail.h"
 #include "repair/detect.h"
 #include "repair/pass.h"
+#include "repair/region_solve.h"
 
 #include <chrono>
 #include <deque>
@@ -65,12 +66,28 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
                     const Pass& pass, Touched& touched) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   Transaction tx(b);
-  std::string why, note;
+  std::string why, note, solve_why;
   try {
+    // The faces the repair can act on, as they are before it: the solve's data terms.
+    detail::OriginalFaces original = detail::snapshot_near(b, p, tol);
     RepairContext call{b, p, tol, touched};
     why = pass.repair(call);
     note = call.note;
     if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
+    // Every pass ends here: the region's surfaces and vertices solved together so that
+    // the geometry agrees with the new topology to the modelling precision.
+    // When it cannot (near-coincident faces waiting for pass 8 make a vertex's position
+    // ill-conditioned), the pass's own geometry stands if it is consistent within the
+    // tolerance (the check below), with the solve's reason in the note; otherwise the
+    // reason names the constraints that cannot be met together.
+    if (why.empty()) {
+      detail::RegionSolve solve = detail::solve_region(b, touched, original, tol);
+      solve_why = solve.why;
+      entry.max_residual = solve.max_residual;
+      entry.solve_seconds = solve.seconds;
+      if (solve.why.empty())
+        for (const auto& m : solve.moved) entry.surfaces_moved.push_back({m.face, m.distance});
+    }
   } catch (const std::exception& e) {
     why = std::string("geometry could not be computed: ") + e.what();
   }
@@ -78,8 +95,11 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     double dev = detail::local_deviation(b, touched, tol, &why);
     entry.deviation = dev;
     if (why.empty() && !(dev <= tol.length))
-      why = "the new geometry is not consistent within tolerance (deviation " + fmt(dev) + ")";
+      why = solve_why.empty() ? "the new geometry is not consistent within tolerance (deviation " + fmt(dev) + ")"
+                              : solve_why;
   }
+  if (why.empty() && !solve_why.empty())
+    note += (note.empty() ? "" : "; ") + std::string("consistent to the tolerance only: ") + solve_why;
   if (why.empty() && options.check_topology_each_repair) {
     auto v = check_topology(b);
     if (!v.empty()) why = "check_topology: " + to_string(v.front());
@@ -90,6 +110,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     touched.clear();
     entry.reason = why;
     entry.deviation = 0.0;
+    entry.surfaces_moved.clear();
     return entry;
   }
   entry.operators = b.journal().op_names(tx.first_entry());

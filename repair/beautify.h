@@ -43,6 +43,12 @@ struct RepairEntry {
   std::string reason;                  // why not repaired (empty when repaired)
   double deviation = 0.0;              // largest geometric deviation left around the repair
   std::string note = {};               // how it was repaired, where the pass says (e.g. a new face's surface)
+  // The region's geometry solve (repair/region_solve.h): how far each solved face moved
+  // from its surface before the repair (largest sample distance), and the largest
+  // distance left between a vertex and a surface of its faces.
+  std::vector<std::pair<FaceH, double>> surfaces_moved = {};
+  double max_residual = 0.0;
+  double solve_seconds = 0.0;  // wall time of that solve
 
   bool repaired() const { return outcome == Outcome::repaired; }
   bool left() const { return outcome == Outcome::refused || outcome == Outcome::no_pass; }

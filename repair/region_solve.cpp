@@ -1,0 +1,561 @@
+// One Ceres problem per repair (repair/region_solve.h). The residuals, in units chosen so
+// one number compares them:
+//   hard   vertex v on the surface of face g, for every face g around v:   d / precision
+//   data   a sample of face f before the repair on f's new surface:        d / length, Huber loss
+//   prior  vertex v near where the repair put it:                          1e-3 · |Δp| / length
+// The hard terms outweigh the data terms by length/precision (10⁶ by default), so at the
+// optimum a vertex is off its surfaces by ~10⁻¹² length: the constraints hold to the
+// modelling precision whenever they can hold at all. The weak prior only fixes a vertex's
+// freedom along a line when two faces meet there.
+#include "repair/region_solve.h"
+
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+#include "repair/beautify_detail.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <type_traits>
+#include <set>
+#include <sstream>
+#include <variant>
+
+namespace kintsugi::detail {
+
+namespace {
+
+// A face whose loops have more corners than this stays fixed: moving it would pull every
+// vertex on it into the problem, and the solve must stay local.
+constexpr std::size_t kMaxSolvedFaceCorners = 64;
+
+std::string fmt(double d) {
+  std::ostringstream os;
+  os.precision(3);
+  os << d;
+  return os.str();
+}
+
+std::vector<VertexH> face_vertices(const Body& b, FaceH f) {
+  std::vector<VertexH> out;
+  for (LoopH l : b.loops_of(f))
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      VertexH v = b.origin(h);
+      if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+    }
+  return out;
+}
+
+// Whether f has at most `limit` corners, counted without walking past the limit: a large
+// face next to a repair (a plate with many holes) costs no more than a small one.
+bool few_corners(const Body& b, FaceH f, std::size_t limit) {
+  std::size_t n = 0;
+  for (LoopH l : b.loops_of(f)) {
+    HalfedgeH start = b.first(l), h = start;
+    if (!start.valid()) continue;
+    do {
+      if (++n > limit) return false;
+      h = b.next(h);
+    } while (h != start && h.valid());
+  }
+  return true;
+}
+
+void add_vertices(const Body& b, const Element& e, std::set<VertexH>& out) {
+  if (auto* v = std::get_if<VertexH>(&e)) {
+    out.insert(*v);
+  } else if (auto* ed = std::get_if<EdgeH>(&e)) {
+    out.insert(b.origin(halfedge_of(*ed, 0)));
+    out.insert(b.target(halfedge_of(*ed, 0)));
+  } else if (auto* l = std::get_if<LoopH>(&e)) {
+    for (HalfedgeH h : b.loop_halfedges(*l)) out.insert(b.origin(h));
+  } else if (auto* f = std::get_if<FaceH>(&e)) {
+    for (VertexH v : face_vertices(b, *f)) out.insert(v);
+  }
+}
+
+// Corners and edge midpoints of f's loops, on f's surface.
+std::vector<geo::Vec3> samples_of(const Body& b, FaceH f, const geo::Tolerances& tol) {
+  const geo::Surface& s = b.surface(f);
+  std::vector<geo::Vec3> out;
+  for (LoopH l : b.loops_of(f))
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      auto poly = halfedge_polyline(b, h, tol.probe_chordal());
+      if (poly.empty()) continue;
+      if (poly.size() == 2) {
+        for (const geo::Vec3& q : {poly[0], geo::Vec3(0.5 * (poly[0] + poly[1]))})
+          out.push_back(geo::closest_point(s, q).point);
+      } else {
+        // A curved side: up to eight points along it (a curved surface needs more than
+        // its corners to be pinned down).
+        const std::size_t n = poly.size() - 1, step = std::max<std::size_t>(1, n / 8);
+        for (std::size_t i = 0; i < n; i += step) out.push_back(geo::closest_point(s, poly[i]).point);
+      }
+    }
+  return out;
+}
+
+// A solved surface's unknowns, in Ceres parameter blocks without redundant freedom:
+//   plane     unit normal n (sphere manifold) | offset d                   (n·x = d)
+//   cylinder  axis as a line: origin, unit direction (line manifold) | radius
+//   cone      axis as a line | radius at the origin, half-angle
+//   sphere    centre | radius
+//   torus     centre | unit axis (sphere manifold) | major, minor radius
+// (The line manifold moves the origin only across the axis, so a cone's radius at its
+// origin stays meaningful.)
+enum class Kind { plane, cylinder, cone, sphere, torus };
+
+struct SurfaceParams {
+  Kind kind = Kind::plane;
+  double a[6] = {};  // normal / line (origin, direction) / centre (+ axis for a torus)
+  double s[2] = {};  // d / radius / radius, half-angle / radius / major, minor
+
+  // The parameter blocks, in the order `distance` reads them.
+  std::vector<std::pair<double*, int>> blocks() {
+    switch (kind) {
+      case Kind::plane: return {{a, 3}, {s, 1}};
+      case Kind::cylinder: return {{a, 6}, {s, 1}};
+      case Kind::cone: return {{a, 6}, {s, 2}};
+      case Kind::sphere: return {{a, 3}, {s, 1}};
+      case Kind::torus: return {{a, 3}, {a + 3, 3}, {s, 2}};
+    }
+    return {};
+  }
+  ceres::Manifold* manifold(std::size_t block) const {
+    if (kind == Kind::plane && block == 0) return new ceres::SphereManifold<3>();
+    if ((kind == Kind::cylinder || kind == Kind::cone) && block == 0) return new ceres::LineManifold<3>();
+    if (kind == Kind::torus && block == 1) return new ceres::SphereManifold<3>();
+    return nullptr;
+  }
+};
+
+std::optional<SurfaceParams> params_of(const geo::Surface& surface) {
+  SurfaceParams q;
+  auto put = [](double* to, const geo::Vec3& v) {
+    for (int i = 0; i < 3; ++i) to[i] = v[i];
+  };
+  if (auto* p = std::get_if<geo::Plane>(&surface)) {
+    q.kind = Kind::plane;
+    put(q.a, p->frame.z.normalized());
+    q.s[0] = p->frame.z.normalized().dot(p->frame.origin);
+  } else if (auto* c = std::get_if<geo::Cylinder>(&surface)) {
+    q.kind = Kind::cylinder;
+    put(q.a, c->frame.origin);
+    put(q.a + 3, c->frame.z.normalized());
+    q.s[0] = c->radius;
+  } else if (auto* k = std::get_if<geo::Cone>(&surface)) {
+    q.kind = Kind::cone;
+    put(q.a, k->frame.origin);
+    put(q.a + 3, k->frame.z.normalized());
+    q.s[0] = k->radius;
+    q.s[1] = k->half_angle;
+  } else if (auto* sp = std::get_if<geo::Sphere>(&surface)) {
+    q.kind = Kind::sphere;
+    put(q.a, sp->frame.origin);
+    q.s[0] = sp->radius;
+  } else if (auto* t = std::get_if<geo::Torus>(&surface)) {
+    q.kind = Kind::torus;
+    put(q.a, t->frame.origin);
+    put(q.a + 3, t->frame.z.normalized());
+    q.s[0] = t->major_radius;
+    q.s[1] = t->minor_radius;
+  } else {
+    return std::nullopt;
+  }
+  return q;
+}
+
+// The frame with a new origin and axis; x stays as near the old one as it can.
+geo::Frame moved_frame(const geo::Frame& old, const geo::Vec3& origin, geo::Vec3 z) {
+  z.normalize();
+  geo::Vec3 x = old.x - old.x.dot(z) * z;
+  if (x.norm() < 1e-6) x = z.unitOrthogonal();
+  return geo::Frame{origin, x.normalized(), z};
+}
+
+geo::Surface surface_from(const geo::Surface& old, const SurfaceParams& q) {
+  const geo::Vec3 a0(q.a[0], q.a[1], q.a[2]), a1(q.a[3], q.a[4], q.a[5]);
+  return std::visit(
+      [&](auto s) -> geo::Surface {
+        using S = decltype(s);
+        if constexpr (std::is_same_v<S, geo::Plane>) {
+          geo::Vec3 n = a0.normalized();
+          s.frame = moved_frame(s.frame, s.frame.origin + (q.s[0] - n.dot(s.frame.origin)) * n, n);
+        } else if constexpr (std::is_same_v<S, geo::Cylinder>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.radius = q.s[0];
+        } else if constexpr (std::is_same_v<S, geo::Cone>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.radius = q.s[0];
+          s.half_angle = q.s[1];
+        } else if constexpr (std::is_same_v<S, geo::Sphere>) {
+          s.frame.origin = a0;
+          s.radius = q.s[0];
+        } else if constexpr (std::is_same_v<S, geo::Torus>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.major_radius = q.s[0];
+          s.minor_radius = q.s[1];
+        }
+        return s;
+      },
+      old);
+}
+
+// Signed distance from x to the surface with blocks q (geometry/surface.cpp's senses:
+// outward positive), in a form Ceres can differentiate.
+template <typename T>
+T distance(Kind kind, T const* const* q, const T* x) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  auto axial = [&](const T* o, const T* d, T& h, T& rho) {
+    T v[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+    h = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+    T w[3] = {v[0] - h * d[0], v[1] - h * d[1], v[2] - h * d[2]};
+    // (+1e-300: on the axis, a cone's apex, the derivative is 0·finite, not 0·∞.)
+    rho = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + 1e-300);
+  };
+  T h, rho;
+  switch (kind) {
+    case Kind::plane: return q[0][0] * x[0] + q[0][1] * x[1] + q[0][2] * x[2] - q[1][0];
+    case Kind::cylinder: axial(q[0], q[0] + 3, h, rho); return rho - q[1][0];
+    case Kind::cone:
+      axial(q[0], q[0] + 3, h, rho);
+      return (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
+    case Kind::sphere: {
+      T d[3] = {x[0] - q[0][0], x[1] - q[0][1], x[2] - q[0][2]};
+      return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 1e-300) - q[1][0];
+    }
+    case Kind::torus: {
+      axial(q[0], q[1], h, rho);
+      T dr = rho - q[2][0];
+      return sqrt(dr * dr + h * h + 1e-300) - q[2][1];
+    }
+  }
+  return T(0);
+}
+
+// A point on a solved surface: a variable vertex (hard; the point is the last block) or
+// a sample of the face before the repair (data; the point is fixed).
+struct OnSolvedSurface {
+  Kind kind;
+  int surface_blocks;
+  bool vertex;
+  geo::Vec3 sample;
+  const double* w;  // read at each evaluation: the hard weight grows between solves
+  template <typename T>
+  bool operator()(T const* const* q, T* r) const {
+    T x[3];
+    for (int i = 0; i < 3; ++i) x[i] = vertex ? q[surface_blocks][i] : T(sample[i]);
+    r[0] = T(*w) * distance(kind, q, x);
+    return true;
+  }
+};
+
+ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool vertex, const geo::Vec3& sample, const double* w,
+                                       std::vector<double*>& blocks) {
+  auto bl = p.blocks();
+  auto* f = new ceres::DynamicAutoDiffCostFunction<OnSolvedSurface, 4>(
+      new OnSolvedSurface{p.kind, int(bl.size()), vertex, sample, w});
+  blocks.clear();
+  for (auto [ptr, size] : bl) {
+    f->AddParameterBlock(size);
+    blocks.push_back(ptr);
+  }
+  if (vertex) f->AddParameterBlock(3);
+  f->SetNumResiduals(1);
+  return f;
+}
+
+// Prior: a vertex near where the repair put it.
+struct Stay {
+  geo::Vec3 p0;
+  double w;
+  template <typename T>
+  bool operator()(const T* p, T* r) const {
+    for (int i = 0; i < 3; ++i) r[i] = T(w) * (p[i] - p0[i]);
+    return true;
+  }
+};
+
+// Hard: a variable vertex on a fixed surface of any kind. The derivative of the signed
+// distance is the unit normal at the nearest point.
+class OnFixedSurface final : public ceres::SizedCostFunction<1, 3> {
+ public:
+  OnFixedSurface(const geo::Surface& s, const double* w) : s_(s), w_(w) {}
+  bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
+    geo::SurfacePoint sp = geo::closest_point(s_, geo::Vec3(params[0][0], params[0][1], params[0][2]));
+    residuals[0] = *w_ * sp.distance;
+    if (jacobians && jacobians[0])
+      for (int i = 0; i < 3; ++i) jacobians[0][i] = *w_ * sp.normal[i];
+    return std::isfinite(residuals[0]);
+  }
+
+ private:
+  geo::Surface s_;
+  const double* w_;
+};
+
+double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
+  double m = 0.0;
+  for (const auto& q : pts) m = std::max(m, std::abs(geo::signed_distance(s, q)));
+  return m;
+}
+
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol);
+
+}  // namespace
+
+OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Tolerances& tol) {
+  std::set<VertexH> vs;
+  for (const Element& e : p.elements) add_vertices(b, e, vs);
+  std::set<FaceH> ring1, ring2;
+  for (VertexH v : vs)
+    for (FaceH f : faces_around(b, v)) ring1.insert(f);
+  for (const Element& e : p.elements)
+    if (auto* f = std::get_if<FaceH>(&e)) ring1.insert(*f);
+  ring2 = ring1;
+  for (FaceH f : ring1)
+    if (few_corners(b, f, kMaxSolvedFaceCorners))
+      for (VertexH v : face_vertices(b, f))
+        for (FaceH g : faces_around(b, v)) ring2.insert(g);
+  OriginalFaces out;
+  for (FaceH f : ring2) {
+    if (std::holds_alternative<std::monostate>(b.surface(f)) || !few_corners(b, f, kMaxSolvedFaceCorners)) continue;
+    try {
+      out[f] = OriginalFace{b.surface(f), samples_of(b, f, tol)};
+    } catch (const std::exception&) {
+      // A face whose boundary cannot be sampled gets no data terms; it then stays fixed.
+    }
+  }
+  return out;
+}
+
+RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
+  const auto start = std::chrono::steady_clock::now();
+  RegionSolve out = solve_region_untimed(b, touched, original, tol);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
+  RegionSolve out;
+  std::set<FaceH> region;
+  std::set<VertexH> verts;
+  for (VertexH v : touched.vertices)
+    if (b.alive(v)) {
+      verts.insert(v);
+      for (FaceH f : faces_around(b, v)) region.insert(f);
+    }
+  for (EdgeH e : touched.edges)
+    if (b.alive(e))
+      for (unsigned s = 0; s < 2; ++s)
+        if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) region.insert(f);
+  for (FaceH f : touched.faces)
+    if (b.alive(f)) region.insert(f);
+
+  // The solved faces: surfaces known from before the repair, not too large.
+  std::vector<FaceH> faces;
+  for (FaceH f : region) {
+    auto it = original.find(f);
+    if (it == original.end() || it->second.samples.empty()) continue;
+    if (!params_of(b.surface(f))) continue;
+    if (!few_corners(b, f, kMaxSolvedFaceCorners)) continue;
+    auto corners = face_vertices(b, f);
+    faces.push_back(f);
+    verts.insert(corners.begin(), corners.end());
+  }
+  std::map<FaceH, std::size_t> face_index;
+  for (std::size_t i = 0; i < faces.size(); ++i) face_index[faces[i]] = i;
+  std::vector<VertexH> vlist(verts.begin(), verts.end());
+
+  // Every (vertex, face around it) pair is a hard constraint.
+  struct Constraint {
+    std::size_t vertex;
+    FaceH face;
+  };
+  std::vector<Constraint> constraints;
+  for (std::size_t i = 0; i < vlist.size(); ++i)
+    for (FaceH g : faces_around(b, vlist[i]))
+      if (!std::holds_alternative<std::monostate>(b.surface(g))) constraints.push_back({i, g});
+
+  auto residual_now = [&](const Constraint& c) {
+    return std::abs(geo::signed_distance(b.surface(c.face), b.point(vlist[c.vertex])));
+  };
+  double before = 0.0;
+  for (const auto& c : constraints) before = std::max(before, residual_now(c));
+  out.variable_faces = int(faces.size());
+  out.variable_vertices = int(vlist.size());
+  out.residuals = int(constraints.size());
+  if (before <= tol.precision) {
+    // Already consistent: nothing to solve; report how far the faces have moved.
+    out.max_residual = before;
+    for (FaceH f : faces) out.moved.push_back({f, max_distance(b.surface(f), original.at(f).samples)});
+    return out;
+  }
+
+  // One solve, with constraint `skip` left out (none when skip >= constraints.size()).
+  struct Outcome {
+    std::vector<geo::Surface> surfaces;  // of `faces`
+    std::vector<geo::Vec3> points;       // of `vlist`
+    std::vector<std::pair<double, std::size_t>> unmet;  // residual, constraint
+    double max_residual = 0.0;
+    std::vector<double> moved;  // of `faces`
+    bool too_far = false;
+    std::vector<std::pair<double, std::size_t>> vertices_too_far;  // distance, vertex
+  };
+  const double w_hard = 1.0 / tol.precision, w_data = 1.0 / tol.length, w_prior = 1e-3 / tol.length;
+  auto run = [&](std::size_t skip) {
+    double hard = w_hard;  // the hard terms' weight of the current stage
+    std::vector<SurfaceParams> params(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) params[i] = *params_of(b.surface(faces[i]));
+    std::vector<std::array<double, 3>> points(vlist.size());
+    for (std::size_t i = 0; i < vlist.size(); ++i)
+      for (int k = 0; k < 3; ++k) points[i][std::size_t(k)] = b.point(vlist[i])[k];
+    ceres::Problem problem;
+    for (auto& p : params) {
+      auto bl = p.blocks();
+      for (std::size_t k = 0; k < bl.size(); ++k) {
+        problem.AddParameterBlock(bl[k].first, bl[k].second);
+        if (ceres::Manifold* m = p.manifold(k)) problem.SetManifold(bl[k].first, m);
+      }
+    }
+    std::vector<double*> blocks;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (const auto& s : original.at(faces[i]).samples) {
+        ceres::CostFunction* f = on_solved_surface(params[i], false, s, &w_data, blocks);
+        problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
+      }
+    for (std::size_t i = 0; i < vlist.size(); ++i)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Stay, 3, 3>(new Stay{b.point(vlist[i]), w_prior}),
+                               nullptr, points[i].data());
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      if (k == skip) continue;
+      const Constraint& c = constraints[k];
+      auto it = face_index.find(c.face);
+      if (it != face_index.end()) {
+        ceres::CostFunction* f = on_solved_surface(params[it->second], true, geo::Vec3::Zero(), &hard, blocks);
+        blocks.push_back(points[c.vertex].data());
+        problem.AddResidualBlock(f, nullptr, blocks);
+      } else {
+        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, points[c.vertex].data());
+      }
+    }
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.max_num_iterations = 100;
+    options.function_tolerance = 1e-14;
+    options.gradient_tolerance = 1e-20;
+    options.parameter_tolerance = 1e-15;
+    options.logging_type = ceres::SILENT;
+    // Continuation: the hard weight grows from 10x the data weight to 1/precision by 100x
+    // per solve, each starting where the last ended. Started at full weight, the solver
+    // crawls along the stiff valley where a surface and its vertices move together.
+    ceres::Solver::Summary summary;
+    for (hard = 10 * w_data;; hard = std::min(w_hard, 100 * hard)) {
+      ceres::Solve(options, &problem, &summary);
+      if (hard >= w_hard) break;
+    }
+
+    // The solved geometry, judged geometrically (not by the weighted cost).
+    Outcome o;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      o.surfaces.push_back(surface_from(b.surface(faces[i]), params[i]));
+    for (const auto& p : points) o.points.push_back(geo::Vec3(p[0], p[1], p[2]));
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      if (k == skip) continue;
+      const Constraint& c = constraints[k];
+      auto it = face_index.find(c.face);
+      const geo::Surface& s = it != face_index.end() ? o.surfaces[it->second] : b.surface(c.face);
+      double r = std::abs(geo::signed_distance(s, o.points[c.vertex]));
+      if (!std::isfinite(r)) r = HUGE_VAL;
+      o.max_residual = std::max(o.max_residual, r);
+      if (!(r <= tol.precision)) o.unmet.push_back({r, k});
+    }
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      o.moved.push_back(max_distance(o.surfaces[i], original.at(faces[i]).samples));
+      o.too_far = o.too_far || !(o.moved.back() <= tol.length);
+    }
+    // A vertex sliding along its surfaces further than the tolerance reshapes its faces'
+    // boundaries by more than the tolerance, however little the surfaces moved.
+    for (std::size_t i = 0; i < vlist.size(); ++i)
+      if (double d = (o.points[i] - b.point(vlist[i])).norm(); !(d <= tol.length)) o.vertices_too_far.push_back({d, i});
+    return o;
+  };
+  auto name = [&](std::size_t k) { return vlist[constraints[k].vertex].str() + " on " + constraints[k].face.str(); };
+
+  Outcome o = run(constraints.size());
+  out.solved = true;
+  out.max_residual = o.max_residual;
+  for (std::size_t i = 0; i < faces.size(); ++i) out.moved.push_back({faces[i], o.moved[i]});
+  if (!o.unmet.empty()) {
+    // The constraints that cannot be met together: those whose removal alone lets the
+    // rest be met (dropping one at a time), when there are few enough to try.
+    std::sort(o.unmet.begin(), o.unmet.end(), [](const auto& a, const auto& c) { return a.first > c.first; });
+    std::vector<std::size_t> conflict;
+    constexpr std::size_t kMaxDropOne = 24;
+    if (o.unmet.size() <= kMaxDropOne)
+      for (auto [r, k] : o.unmet)
+        if (Outcome without = run(k); without.unmet.empty()) conflict.push_back(k);
+    out.why = "the new geometry cannot meet these constraints together within the modelling precision " +
+              fmt(tol.precision) + ":";
+    if (!conflict.empty()) {
+      for (std::size_t i = 0; i < conflict.size(); ++i) out.why += (i ? ", " : " ") + name(conflict[i]);
+    } else {
+      for (std::size_t i = 0; i < o.unmet.size() && i < 8; ++i)
+        out.why += (i ? ", " : " ") + name(o.unmet[i].second) + " (off " + fmt(o.unmet[i].first) + ")";
+      if (o.unmet.size() > 8) out.why += " and " + std::to_string(o.unmet.size() - 8) + " more";
+    }
+    return out;
+  }
+  if (!o.vertices_too_far.empty()) {
+    out.why = "the new topology forces vertices further than the tolerance " + fmt(tol.length) + ":";
+    for (std::size_t i = 0; i < o.vertices_too_far.size() && i < 8; ++i)
+      out.why += (i ? ", " : " ") + vlist[o.vertices_too_far[i].second].str() + " by " + fmt(o.vertices_too_far[i].first);
+    return out;
+  }
+  if (o.too_far) {
+    out.why = "the new topology forces surfaces further than the tolerance " + fmt(tol.length) +
+              " from where they were:";
+    bool first = true;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      if (!(o.moved[i] <= tol.length)) {
+        out.why += (first ? " " : ", ") + faces[i].str() + " by " + fmt(o.moved[i]);
+        first = false;
+      }
+    return out;
+  }
+  const std::vector<geo::Surface>& solved = o.surfaces;
+  auto point_after = [&](std::size_t i) { return o.points[i]; };
+
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    b.set_surface(faces[i], solved[i], b.same_sense(faces[i]));
+    touched.faces.insert(faces[i]);
+  }
+  std::set<EdgeH> edges;
+  for (std::size_t i = 0; i < vlist.size(); ++i) {
+    b.set_point(vlist[i], point_after(i));
+    touched.vertices.insert(vlist[i]);
+    for (HalfedgeH h : b.outgoing(vlist[i])) edges.insert(edge_of(h));
+  }
+  for (EdgeH e : edges) {
+    std::string why;
+    auto c = derive_edge_curve(b, e, tol, &why);
+    if (!c) {
+      out.why = "after the solve, " + why;
+      return out;
+    }
+    b.set_curve(e, *c);
+    touched.edges.insert(e);
+  }
+  return out;
+}
+
+}  // namespace
+
+}  // namespace kintsugi::detail
