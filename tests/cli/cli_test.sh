@@ -31,7 +31,8 @@ expect 2 "unknown verb" -- "$K" frobnicate
 contains "unknown verb" "unknown verb is named"
 # Every verb the top-level help lists is covered here; each verb's --help exits 0, shows
 # its usage line and names each of its options.
-verbs_here="generate check inject detect beautify demo audit convert measure view"
+# batch: its runs are tested in tests/batch/ (batch_end_to_end); here its help and usage.
+verbs_here="generate check inject detect beautify demo audit convert measure view batch"
 "$K" --help >"$dir/top" 2>&1
 for verb in $(sed -n 's/^  \([a-z]\+\) .*/\1/p' "$dir/top"); do
   case " $verbs_here " in *" $verb "*) pass=$((pass + 1)) ;; *) fail=$((fail + 1)); echo "FAIL: verb $verb has no tests here" ;; esac
@@ -48,6 +49,7 @@ options_of() {  # one per line
     convert) printf '%s\n' "IN OUT" ;;
     measure) printf '%s\n' "--json" "--tol T" ;;
     view) printf '%s\n' "--tol T" "--chordal C" "-o PAGE.html" "--png" ;;
+    batch) printf '%s\n' "--tol T" "--tol-from-meta" "--jobs N" "--timeout S" "--max-memory M" "--resume" "--manifest FILE" "--shard I/N" ;;
   esac
 }
 for verb in $verbs_here; do
@@ -57,6 +59,8 @@ for verb in $verbs_here; do
 done
 
 # Bad usage of each verb: exit 2 and a message that says what is wrong.
+expect 2 "batch without folders" -- "$K" batch
+contains "usage: kintsugi batch" "batch without folders shows usage"
 expect 2 "generate without a model" -- "$K" generate
 contains "usage: kintsugi generate" "generate without a model shows usage"
 expect 2 "check without a file" -- "$K" check
