@@ -154,20 +154,6 @@ std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vect
   return out;
 }
 
-// Whether the half-edges strictly after position `from` and before `to` (indices taken
-// round the loop) are one or more, each with a small or sliver face across.
-bool dent_between(DetectContext& c, const std::vector<HalfedgeH>& hs, std::size_t from, std::size_t to) {
-  const std::size_t n = hs.size();
-  if (to <= from + 1) return false;
-  for (std::size_t k = from + 1; k < to; ++k) {
-    FaceH g = c.b.face(twin(hs[k % n]));
-    if (!g.valid()) return false;
-    const FaceInfo& gi = c.face(g);
-    if (!gi.measured || !(gi.small || gi.sliver)) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
@@ -185,14 +171,12 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
     std::vector<Side> sides;
     std::vector<geo::Box> boxes;
     std::vector<std::vector<double>> prefix;  // per loop: length of the half-edges before pos
-    std::vector<std::vector<HalfedgeH>> hs_of;  // per loop: its half-edges in order
     // Edges along a gap go when the gap is closed (passes 1-3, before pinching): they
     // are not pinched, and a stretch of them joins its neighbours as if it had no length.
     auto gap_side = [&](HalfedgeH h) { return b.is_border(twin(h)); };
     auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length(edge_of(h)); };
     for (LoopH l : b.loops_of(f)) {
       std::vector<HalfedgeH> hs = b.loop_halfedges(l);
-      hs_of.push_back(hs);
       prefix.emplace_back(1, 0.0);
       for (std::size_t i = 0; i < hs.size(); ++i) {
         prefix.back().push_back(prefix.back().back() + len(hs[i]));
@@ -229,14 +213,6 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       // The boundary between them: after A up to B, and after B round to A.
       const double l1 = pre[j] - pre[i + 1], l2 = pre[n] - (pre[j + 1] - pre[i]);
       if (l1 < t && l2 < t) continue;  // the whole face is tiny: a small face's business
-      // The sides come close only round a dent of small or sliver faces (a chain of small
-      // faces notched into the edge, as a scan leaves them): every edge of the boundary
-      // between them, one way round, has such a face across. Paper 4.2: small and sliver
-      // faces "must be detected separately ... and removed from consideration"; pass 5 or
-      // 6 removes the dent, and the sides are one edge again (removing a small face chain
-      // cannot make a pinch: Table 1). Closing the "pinch" first would cut through the
-      // dent's faces and leave them a ring pass 5 cannot collapse.
-      if (dent_between(c, hs_of[A.loop], i, j) || dent_between(c, hs_of[A.loop], j, i + n)) continue;
       // Ends where the two edges are joined, through a stretch shorter than t or at a
       // vertex they share elsewhere in the loop (across a seam or strut, e.g. the two
       // ends of a cut circle on a cylinder): there they are consecutive, so they count
