@@ -45,13 +45,6 @@ bool pass_implemented(ProblemType t) { return find_pass(t) != nullptr; }
 
 namespace {
 
-std::string fmt(double d) {
-  std::ostringstream os;
-  os.precision(3);
-  os << d;
-  return os.str();
-}
-
 std::size_t slot(ProblemType t) { return std::size_t(problem_order(t) - 1); }
 
 bool all_alive(const Body& b, const Problem& p) {
@@ -95,7 +88,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     double dev = detail::local_deviation(b, touched, tol, &why);
     entry.deviation = dev;
     if (why.empty() && !(dev <= tol.length))
-      why = solve_why.empty() ? "the new geometry is not consistent within tolerance (deviation " + fmt(dev) + ")"
+      why = solve_why.empty() ? "the new geometry is not consistent within tolerance (deviation " + detail::fmt(dev) + ")"
                               : solve_why;
   }
   if (why.empty() && !solve_why.empty())

@@ -47,4 +47,7 @@ double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& t
 
 double face_area(const Body& b, FaceH f, const geo::Tolerances& tol);
 
+// A length or deviation as the reasons and notes print it (three significant digits).
+std::string fmt(double d);
+
 }  // namespace kintsugi::detail

@@ -17,13 +17,6 @@ namespace kintsugi::detail {
 
 namespace {
 
-std::string fmt(double d) {
-  std::ostringstream os;
-  os.precision(3);
-  os << d;
-  return os.str();
-}
-
 bool is_plane(const geo::Surface& s) { return std::holds_alternative<geo::Plane>(s); }
 
 geo::Curve reversed(const geo::Curve& c) {
@@ -255,6 +248,13 @@ double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& t
     }
   }
   return worst;
+}
+
+std::string fmt(double d) {
+  std::ostringstream os;
+  os.precision(3);
+  os << d;
+  return os.str();
 }
 
 }  // namespace kintsugi::detail

@@ -5,6 +5,7 @@
 #include "geometry/surface.h"
 #include "invariants/element_geometry.h"
 #include "kernel/euler.h"
+#include "repair/beautify_detail.h"
 #include "repair/detect_detail.h"
 
 #include <Eigen/Dense>
@@ -17,13 +18,6 @@
 namespace kintsugi::detail {
 
 namespace {
-
-std::string fmt(double d) {
-  std::ostringstream os;
-  os.precision(3);
-  os << d;
-  return os.str();
-}
 
 bool on_border(const Body& b, EdgeH e) { return b.is_border(halfedge_of(e, 0)) || b.is_border(halfedge_of(e, 1)); }
 

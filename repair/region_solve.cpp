@@ -32,13 +32,6 @@ namespace {
 // vertex on it into the problem, and the solve must stay local.
 constexpr std::size_t kMaxSolvedFaceCorners = 64;
 
-std::string fmt(double d) {
-  std::ostringstream os;
-  os.precision(3);
-  os << d;
-  return os.str();
-}
-
 std::vector<VertexH> face_vertices(const Body& b, FaceH f) {
   std::vector<VertexH> out;
   for (LoopH l : b.loops_of(f))
