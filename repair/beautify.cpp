@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <deque>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -55,14 +56,23 @@ bool all_alive(const Body& b, const Problem& p) {
 
 // One repair inside a transaction: committed only when the operators, the new geometry,
 // the local geometry check and (optionally) check_topology all succeed.
+// A repair kept with the pass's own geometry because the solve could not reach the
+// modelling precision then (see attempt()): solved again once later repairs are done.
+struct Unsettled {
+  std::size_t entry;  // its index in BeautifyReport::problems
+  Touched touched;
+  detail::OriginalFaces original;
+};
+
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
-                    const Pass& pass, Touched& touched) {
+                    const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   Transaction tx(b);
   std::string why, note, solve_why;
+  detail::OriginalFaces original;
   try {
     // The faces the repair can act on, as they are before it: the solve's data terms.
-    detail::OriginalFaces original = detail::snapshot_near(b, p, tol);
+    original = detail::snapshot_near(b, p, tol);
     RepairContext call{b, p, tol, touched};
     why = pass.repair(call);
     note = call.note;
@@ -109,6 +119,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   entry.operators = b.journal().op_names(tx.first_entry());
   entry.note = note;
   tx.commit();
+  if (unsettled && !solve_why.empty()) *unsettled = std::move(original);
   entry.outcome = Outcome::repaired;
   return entry;
 }
@@ -136,7 +147,8 @@ struct Queues {
 // Runs one pass over `queue`; returns what its committed repairs touched. Problems it
 // does not repair stay in `left_of_type`.
 Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::vector<Problem> queue_in,
-                  BeautifyReport& report, const BeautifyOptions& options, std::vector<Problem>& left_of_type) {
+                  BeautifyReport& report, const BeautifyOptions& options, std::vector<Problem>& left_of_type,
+                  std::vector<Unsettled>* unsettled = nullptr) {
   Touched region;
   if (!pass) {
     for (Problem& p : queue_in) {
@@ -145,12 +157,22 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     }
     return region;
   }
+  // A problem refused once is tried again after a later repair of this pass changed its
+  // neighbourhood (a sliver beside another sliver may only be removable once the other
+  // is gone); without that, a second beautify would repair what the first left. Every
+  // element set is tried at most kMaxAttempts times, so the queue always drains.
+  constexpr int kMaxAttempts = 3;
   std::deque<Problem> queue(queue_in.begin(), queue_in.end());
-  std::set<std::vector<Element>> queued;
-  for (const Problem& p : queue) queued.insert(p.elements);
+  std::map<std::vector<Element>, int> attempts;  // per element set: times queued
+  std::set<std::vector<Element>> pending;        // element sets now in the queue
+  for (const Problem& p : queue) {
+    attempts[p.elements] = 1;
+    pending.insert(p.elements);
+  }
   while (!queue.empty()) {
     Problem p = std::move(queue.front());
     queue.pop_front();
+    pending.erase(p.elements);
     if (!all_alive(b, p)) {
       // An earlier repair removed some of its elements; whatever is left of it there was
       // detected again around that repair and queued.
@@ -158,17 +180,23 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
       continue;
     }
     Touched touched;
-    RepairEntry entry = attempt(b, p, tol, options, *pass, touched);
+    detail::OriginalFaces original;
+    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original);
     const bool ok = entry.repaired();
     report.problems.push_back(std::move(entry));
+    if (ok && unsettled && !original.empty()) unsettled->push_back({report.problems.size() - 1, touched, std::move(original)});
     if (!ok) {
       left_of_type.push_back(std::move(p));
       continue;
     }
     region.merge(touched);
     // What the repair left or made of this pass's own type (Table 1's diagonal).
-    for (Problem& q : detect_near_for(*pass, b, tol, touched))
-      if (queued.insert(q.elements).second) queue.push_back(std::move(q));
+    for (Problem& q : detect_near_for(*pass, b, tol, touched)) {
+      if (pending.count(q.elements) || attempts[q.elements] >= kMaxAttempts) continue;
+      ++attempts[q.elements];
+      pending.insert(q.elements);
+      queue.push_back(std::move(q));
+    }
     // A problem refused earlier in this pass may have been changed by this repair.
     Neighbourhood n = neighbourhood(b, touched);
     std::vector<Problem> still;
@@ -177,6 +205,57 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     left_of_type = std::move(still);
   }
   return region;
+}
+
+Touched alive_part(const Body& b, const Touched& t) {
+  Touched out;
+  for (VertexH v : t.vertices)
+    if (b.alive(v)) out.vertices.insert(v);
+  for (EdgeH e : t.edges)
+    if (b.alive(e)) out.edges.insert(e);
+  for (FaceH f : t.faces)
+    if (b.alive(f)) out.faces.insert(f);
+  return out;
+}
+
+// Solves again, each in its own transaction, the regions of repairs kept at the tolerance
+// only. What made their solve fail then is often gone now: two nearly coincident faces
+// beside a pinch make a vertex ill-conditioned until pass 8 merges them. A region that
+// still cannot be solved stays as it was (consistent within the tolerance). Returns what
+// the committed solves touched; the repairs' notes say which were settled.
+Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unsettled, BeautifyReport& r) {
+  Touched changed;
+  std::vector<Unsettled> still;
+  for (Unsettled& u : unsettled) {
+    Touched t = alive_part(b, u.touched);
+    if (t.empty()) continue;  // a later repair removed all of it, and solved its own region
+    Transaction tx(b);
+    std::string why;
+    detail::RegionSolve s;
+    try {
+      s = detail::solve_region(b, t, u.original, tol);
+      why = s.why;
+      if (why.empty()) {
+        double dev = detail::local_deviation(b, t, tol, &why);
+        if (why.empty() && !(dev <= tol.length)) why = "deviation " + detail::fmt(dev);
+      }
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
+    if (!why.empty()) {
+      tx.rollback();
+      still.push_back(std::move(u));
+      continue;
+    }
+    tx.commit();
+    changed.merge(t);
+    RepairEntry& e = r.problems[u.entry];
+    e.note += "; solved to the modelling precision after the later repairs (largest residual " +
+              detail::fmt(s.max_residual) + ")";
+    e.max_residual = s.max_residual;
+  }
+  unsettled = std::move(still);
+  return changed;
 }
 
 }  // namespace
@@ -207,21 +286,55 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   }
   const double first_detect = std::chrono::duration<double>(clock::now() - t0).count();
   Touched since_refresh;  // what repairs touched since the queues were last brought up to date
-  for (ProblemType t : kAllProblemTypes) {
-    auto start = clock::now();
+  // Table 1's order means one round suffices when repairs do not move geometry. They do,
+  // within the tolerance (a merged face's refit, the region solve), so a distance just
+  // above the tolerance can fall below it and an earlier type appear behind its pass
+  // (docs/table1-audit.md, "Threshold flips"), and a problem refused early may become
+  // repairable once its neighbours are repaired. So the passes run again over what is
+  // left, refused problems included, until a round repairs nothing (a fixed point: a
+  // second beautify then finds the same refusals and changes nothing) or kMaxRounds.
+  constexpr int kMaxRounds = 3;
+  std::vector<Unsettled> unsettled;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    int repaired = 0;
+    for (ProblemType t : kAllProblemTypes) {
+      auto start = clock::now();
+      q.refresh(b, tol, since_refresh);
+      since_refresh.clear();
+      std::vector<Problem> queue = std::move(q.by_type[slot(t)]);
+      q.by_type[slot(t)].clear();
+      std::vector<Problem> left;
+      const std::size_t first_entry = r.problems.size();
+      since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled);
+      for (std::size_t i = first_entry; i < r.problems.size(); ++i) repaired += r.problems[i].repaired();
+      q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
+      r.seconds[slot(t)] += std::chrono::duration<double>(clock::now() - start).count();
+    }
+    since_refresh.merge(settle(b, tol, unsettled, r));
+    // What the last pass and the settling touched, and anything a pass created of a type
+    // fixed before it (a break of Table 1's order), is found here too.
     q.refresh(b, tol, since_refresh);
     since_refresh.clear();
-    std::vector<Problem> queue = std::move(q.by_type[slot(t)]);
-    q.by_type[slot(t)].clear();
-    std::vector<Problem> left;
-    since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left);
-    q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
-    r.seconds[slot(t)] = std::chrono::duration<double>(clock::now() - start).count();
+    bool any_left = false;
+    for (const auto& by : q.by_type) any_left = any_left || !by.empty();
+    if (repaired == 0 || !any_left) break;
+  }
+  // A problem refused in one round and taken up again in a later one is reported once,
+  // with its last outcome.
+  {
+    std::map<std::pair<int, std::vector<Element>>, std::size_t> last;
+    for (std::size_t i = 0; i < r.problems.size(); ++i)
+      last[{problem_order(r.problems[i].problem.type), r.problems[i].problem.elements}] = i;
+    std::vector<RepairEntry> kept;
+    for (std::size_t i = 0; i < r.problems.size(); ++i) {
+      const RepairEntry& e = r.problems[i];
+      const bool superseded = last[{problem_order(e.problem.type), e.problem.elements}] != i;
+      if (!(superseded && (e.outcome == Outcome::refused || e.outcome == Outcome::no_pass)))
+        kept.push_back(std::move(r.problems[i]));
+    }
+    r.problems = std::move(kept);
   }
   r.seconds[0] += first_detect;  // the first detection is charged to the first pass
-  // What the last pass touched, and anything a pass created of a type fixed before it
-  // (a break of Table 1's order), is found here too.
-  q.refresh(b, tol, since_refresh);
   for (auto& by : q.by_type)
     for (Problem& p : by) {
       r.problems_after[slot(p.type)]++;

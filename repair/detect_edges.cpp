@@ -108,8 +108,11 @@ void detect_mergeable(DetectContext& c, std::vector<Problem>& out) {
     if (in_chain(edge_of(a)) || in_chain(edge_of(d))) continue;
     Problem p;
     p.type = ProblemType::mergeable_edges;
-    p.elements = {v, edge_of(a), edge_of(d)};
-    p.measure = c.edge_length(edge_of(a)) + c.edge_length(edge_of(d));
+    // The two edges in index order: which of v's half-edges comes first depends on the
+    // operators' history, and a problem found again later must name them the same way.
+    EdgeH e1 = std::min(edge_of(a), edge_of(d)), e2 = std::max(edge_of(a), edge_of(d));
+    p.elements = {v, e1, e2};
+    p.measure = c.edge_length(e1) + c.edge_length(e2);
     p.measure_kind = Measure::length;
     out.push_back(std::move(p));
   }

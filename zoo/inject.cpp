@@ -1,6 +1,7 @@
 // The defect injector: picks a suitable place for a defect type (or takes the one named
 // by `at`), makes the defect inside a transaction, and keeps it only if the body is
 // still valid and consistent (spec/defects.md).
+#include "geometry/box.h"
 #include "geometry/curve.h"
 #include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
@@ -168,6 +169,11 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
         bool corners3 = true;
         for (HalfedgeH h : hs) corners3 = corners3 && b.degree(b.origin(h)) == 3;
         if (!corners3) continue;
+        // A scan fits a face twice only where the face is large enough to be fitted: a
+        // face a few tolerances across (another defect's small face) is not split.
+        geo::Box box;
+        for (HalfedgeH h : hs) box.add(b.point(b.origin(h)));
+        if (box.diagonal() < 10 * tol) continue;
         std::size_t i = rng.below(hs.size()), j = (i + 2 + rng.below(hs.size() - 3)) % hs.size();
         EdgeH e1 = edge_of(hs[i]), e2 = edge_of(hs[j]);
         double dev = tol * u();

@@ -87,6 +87,7 @@
     s3.add(light);
     return {
       model: m, scene: s3, light: light, colours: colours, colourAttribute: g.getAttribute('color'),
+      triangles: g.index.count / 3,
       faceVertices: uints(m.mesh.face_vertices), lineMaterials: [],
       segments: {}, dots: [], dotColours: [], anchors: [], anchorColours: []
     };
@@ -228,7 +229,13 @@
 
   // ---- camera, controls, drawing -------------------------------------------------------
   timing.listed = performance.now();
-  var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
+  // Antialiasing only for pages a software rasteriser draws quickly: on a machine
+  // without a GPU (SwiftShader) multisampling 266k triangles (a 10,000-face model) took
+  // 42 s for the first frame, 26 s without it (docs/benchmarks.md).
+  var triangles = views.reduce(function (n, v) { return n + v.triangles; }, 0);
+  var renderer = new THREE.WebGLRenderer({
+    canvas: canvas, antialias: triangles <= 100000, preserveDrawingBuffer: true
+  });
   timing.webgl = performance.now();  // a WebGL context (with software rendering, starting it dominates small pages)
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xffffff, 1);
