@@ -48,6 +48,21 @@ double polyline_chordal(const geo::Curve& c) {
 
 }  // namespace
 
+bool planar_face_sense_ok(const Body& b, FaceH f, double precision) {
+  const auto* plane = std::get_if<geo::Plane>(&b.surface(f));
+  if (!plane) return true;
+  LoopH l = b.outer_loop(f);
+  if (!l.valid() || b.is_lone(l)) return true;
+  std::vector<geo::Vec3> pts;
+  for (HalfedgeH h : b.loop_halfedges(l)) {
+    auto seg = halfedge_polyline(b, h, geo::Tolerances::orientation_chordal(std::max(precision, 1e-300)));
+    pts.insert(pts.end(), seg.begin(), seg.end() - 1);
+  }
+  geo::Vec3 n = geo::polygon_normal(pts);
+  geo::Vec3 outward = plane->frame.z * (b.same_sense(f) ? 1.0 : -1.0);
+  return n.dot(outward) > 0;
+}
+
 GeometryReport check_geometry(const Body& b, double precision) {
   Run run{b, precision, {}};
   for (FaceH f : b.faces())
@@ -103,21 +118,9 @@ GeometryReport check_geometry(const Body& b, double precision) {
   }
 
   // Planar faces: the outer loop turns counter-clockwise about the outward normal.
-  for (FaceH f : b.faces()) {
-    const auto* plane = std::get_if<geo::Plane>(&b.surface(f));
-    if (!plane) continue;
-    LoopH l = b.outer_loop(f);
-    if (b.is_lone(l)) continue;
-    std::vector<geo::Vec3> pts;
-    for (HalfedgeH h : b.loop_halfedges(l)) {
-      auto seg = halfedge_polyline(b, h, geo::Tolerances::orientation_chordal(std::max(precision, 1e-300)));
-      pts.insert(pts.end(), seg.begin(), seg.end() - 1);
-    }
-    geo::Vec3 n = geo::polygon_normal(pts);
-    geo::Vec3 outward = plane->frame.z * (b.same_sense(f) ? 1.0 : -1.0);
-    if (n.dot(outward) <= 0)
+  for (FaceH f : b.faces())
+    if (!planar_face_sense_ok(b, f, precision))
       run.r.violations.push_back({"face_sense", {f.str()}, "outer loop turns clockwise about the outward normal", 0.0});
-  }
   return run.r;
 }
 

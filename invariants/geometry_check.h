@@ -28,4 +28,9 @@ struct GeometryReport {
 
 GeometryReport check_geometry(const Body& b, double precision);
 
+// `face_sense` for one face: false when f is planar and its outer loop (curved edges
+// followed within `precision`) turns clockwise about its outward normal, i.e. the face is
+// inside out. True for non-planar faces and faces without an outer loop.
+bool planar_face_sense_ok(const Body& b, FaceH f, double precision);
+
 }  // namespace kintsugi

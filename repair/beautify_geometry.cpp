@@ -6,6 +6,7 @@
 #include "geometry/same_geometry.h"
 #include "geometry/surface.h"
 #include "invariants/element_geometry.h"
+#include "invariants/geometry_check.h"
 #include "repair/beautify_detail.h"
 
 #include <algorithm>
@@ -217,6 +218,13 @@ double local_deviation(const Body& b, const Touched& t, const geo::Tolerances& t
     if (!hs.empty() && hs.size() < 3 &&
         std::all_of(hs.begin(), hs.end(), [&](HalfedgeH h) { return std::holds_alternative<geo::Line>(b.curve(edge_of(h))); })) {
       *why = f.str() + " would be left with " + std::to_string(hs.size()) + " straight side(s)";
+      return HUGE_VAL;
+    }
+    // A repair that turns a face inside out (its outer loop clockwise about the outward
+    // normal: a pinch zipped the wrong way round) is within tolerance everywhere and still
+    // an invalid solid: OpenCASCADE calls it unorientable (found by the scan-parts score).
+    if (!planar_face_sense_ok(b, f, tol.precision)) {
+      *why = f.str() + "'s outer loop would turn clockwise about its outward normal (the face inside out)";
       return HUGE_VAL;
     }
   }

@@ -230,7 +230,8 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
     std::printf("  injected model: BRepCheck %s %s\n", iv.valid ? "valid" : "invalid",
                 iv.problems.empty() ? "" : iv.problems[0].c_str());
     for (const RepairEntry& e : rep.problems)
-      std::printf("  %s %s %s\n", problem_name(e.problem.type), outcome_name(e.outcome), e.reason.c_str());
+      std::printf("  %s %s %s%s%s\n", problem_name(e.problem.type), outcome_name(e.outcome), e.reason.c_str(),
+                  e.note.empty() ? "" : " | note: ", e.note.c_str());
     for (const std::string& o : zoo::geometry_offences(out, 1e-6 * t)) std::printf("  offence: %s\n", o.c_str());
     io::OcctVerdict ov = io::occt_check(out);
     for (const std::string& o : ov.problems) std::printf("  BRepCheck: %s\n", o.c_str());
