@@ -194,6 +194,32 @@ TEST(Beautify, RefusedSliverIsRetriedAfterItsNeighbourIsRepaired) {
   EXPECT_TRUE(first.left.empty()) << describe(first);
 }
 
+// The gate after every repair refuses a face turned inside out, however well its
+// vertices lie on their surfaces (two pinch repairs on scan parts did this, and
+// OpenCASCADE called the output unorientable). The hook turns the first planar face it
+// finds over after each repair.
+TEST(Beautify, RepairThatTurnsAFaceInsideOutIsRefused) {
+  zoo::ZooModel m = zoo::paper_object(6, false);
+  Body before = m.body.clone();
+  BeautifyOptions opt;
+  opt.after_repair = [](Body& b, ProblemType, Touched& t) {
+    for (FaceH f : b.faces())
+      if (std::holds_alternative<geo::Plane>(b.surface(f))) {
+        b.set_surface(f, b.surface(f), !b.same_sense(f));
+        t.faces.insert(f);
+        return;
+      }
+  };
+  BeautifyReport r = beautify(m.body, tol_for(m.body, m.tolerance), opt);
+  std::string why;
+  EXPECT_TRUE(m.body.equals(before, &why)) << why;
+  ASSERT_FALSE(r.problems.empty());
+  for (const auto& p : r.problems) {
+    EXPECT_EQ(p.outcome, Outcome::refused) << describe(r);
+    EXPECT_NE(p.reason.find("inside out"), std::string::npos) << p.reason;
+  }
+}
+
 TEST(Beautify, FailedRepairRollsBackExactly) {
   zoo::ZooModel m = zoo::paper_object(6, false);
   Body before = m.body.clone();
