@@ -9,6 +9,7 @@
 // freedom along a line when two faces meet there.
 #include "repair/region_solve.h"
 
+#include "geometry/same_geometry.h"
 #include "geometry/surface.h"
 #include "invariants/element_geometry.h"
 #include "repair/beautify_detail.h"
@@ -365,6 +366,32 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   }
   std::map<FaceH, std::size_t> face_index;
   for (std::size_t i = 0; i < faces.size(); ++i) face_index[faces[i]] = i;
+  // Adjacent planar faces whose surfaces were the same within the tolerance before the
+  // repair share one plane in the solve (issue 16: "faces the repair made one share one
+  // surface"). A boss side a fraction of the tolerance inside the plate's side becomes
+  // adjacent to it when its pinch is zipped: solved apart, the smaller face tilts to meet
+  // the other along their new edge (3 degrees on a scan part), and pass 8 no longer sees
+  // one face; solved together, they are coplanar and pass 8 merges them.
+  std::vector<std::size_t> tie(faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = i;
+  auto root = [&](std::size_t i) {
+    while (tie[i] != i) i = tie[i] = tie[tie[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (!std::holds_alternative<geo::Plane>(b.surface(faces[i]))) continue;
+    for (LoopH l : b.loops_of(faces[i]))
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        FaceH g = b.face(twin(h));
+        auto it = face_index.find(g);
+        if (it == face_index.end() || it->second == i || root(it->second) == root(i)) continue;
+        if (!std::holds_alternative<geo::Plane>(b.surface(g))) continue;
+        const OriginalFace &oi = original.at(faces[i]), &og = original.at(g);
+        if (geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples) <= tol.length)
+          tie[root(it->second)] = root(i);
+      }
+  }
+  for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = root(i);
   std::vector<VertexH> vlist(verts.begin(), verts.end());
 
   // Every (vertex, face around it) pair is a hard constraint.
@@ -385,6 +412,11 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   out.variable_faces = int(faces.size());
   out.variable_vertices = int(vlist.size());
   out.residuals = int(constraints.size());
+  // Tied faces not yet on one plane need the solve however well their vertices lie.
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    if (tie[i] != i)
+      before = std::max(before, max_distance(b.surface(faces[tie[i]]), original.at(faces[i]).samples) -
+                                    max_distance(b.surface(faces[i]), original.at(faces[i]).samples));
   if (before <= tol.precision) {
     // Already consistent: nothing to solve; report how far the faces have moved.
     out.max_residual = before;
@@ -407,11 +439,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     double hard = w_hard;  // the hard terms' weight of the current stage
     std::vector<SurfaceParams> params(faces.size());
     for (std::size_t i = 0; i < faces.size(); ++i) params[i] = *params_of(b.surface(faces[i]));
+    // A tied face is solved through its representative's parameters (params[tie[i]]).
+    auto solved_params = [&](std::size_t i) -> SurfaceParams& { return params[tie[i]]; };
     std::vector<std::array<double, 3>> points(vlist.size());
     for (std::size_t i = 0; i < vlist.size(); ++i)
       for (int k = 0; k < 3; ++k) points[i][std::size_t(k)] = b.point(vlist[i])[k];
     ceres::Problem problem;
-    for (auto& p : params) {
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      if (tie[i] != i) continue;
+      SurfaceParams& p = params[i];
       auto bl = p.blocks();
       for (std::size_t k = 0; k < bl.size(); ++k) {
         problem.AddParameterBlock(bl[k].first, bl[k].second);
@@ -421,7 +457,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::vector<double*> blocks;
     for (std::size_t i = 0; i < faces.size(); ++i)
       for (const auto& s : original.at(faces[i]).samples) {
-        ceres::CostFunction* f = on_solved_surface(params[i], false, s, &w_data, blocks);
+        ceres::CostFunction* f = on_solved_surface(solved_params(i), false, s, &w_data, blocks);
         problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
       }
     for (std::size_t i = 0; i < vlist.size(); ++i)
@@ -432,7 +468,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
       if (it != face_index.end()) {
-        ceres::CostFunction* f = on_solved_surface(params[it->second], true, geo::Vec3::Zero(), &hard, blocks);
+        ceres::CostFunction* f = on_solved_surface(solved_params(it->second), true, geo::Vec3::Zero(), &hard, blocks);
         blocks.push_back(points[c.vertex].data());
         problem.AddResidualBlock(f, nullptr, blocks);
       } else {
@@ -457,8 +493,17 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
 
     // The solved geometry, judged geometrically (not by the weighted cost).
     Outcome o;
-    for (std::size_t i = 0; i < faces.size(); ++i)
-      o.surfaces.push_back(surface_from(b.surface(faces[i]), params[i]));
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      SurfaceParams q = solved_params(i);
+      // A tied plane keeps its own normal's sense (the representative's may be opposite:
+      // the face must not turn inside out).
+      if (q.kind == Kind::plane) {
+        const auto& old_z = std::get<geo::Plane>(b.surface(faces[i])).frame.z;
+        if (old_z.dot(geo::Vec3(q.a[0], q.a[1], q.a[2])) < 0)
+          for (double* x : {&q.a[0], &q.a[1], &q.a[2], &q.s[0]}) *x = -*x;
+      }
+      o.surfaces.push_back(surface_from(b.surface(faces[i]), q));
+    }
     for (const auto& p : points) o.points.push_back(geo::Vec3(p[0], p[1], p[2]));
     for (std::size_t k = 0; k < constraints.size(); ++k) {
       if (k == skip) continue;
