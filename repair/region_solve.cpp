@@ -320,7 +320,11 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
   for (FaceH f : ring2) {
     if (std::holds_alternative<std::monostate>(b.surface(f)) || !few_corners(b, f, kMaxSolvedFaceCorners)) continue;
     try {
-      out[f] = OriginalFace{b.surface(f), samples_of(b, f, tol)};
+      OriginalFace o{b.surface(f), samples_of(b, f, tol), {}};
+      for (LoopH l : b.loops_of(f))
+        for (HalfedgeH h : b.loop_halfedges(l))
+          if (FaceH g = b.face(twin(h)); g.valid() && g != f) o.neighbours.insert(g);
+      out[f] = std::move(o);
     } catch (const std::exception&) {
       // A face whose boundary cannot be sampled gets no data terms; it then stays fixed.
     }
@@ -366,12 +370,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   }
   std::map<FaceH, std::size_t> face_index;
   for (std::size_t i = 0; i < faces.size(); ++i) face_index[faces[i]] = i;
-  // Adjacent planar faces whose surfaces were the same within the tolerance before the
-  // repair share one plane in the solve (issue 16: "faces the repair made one share one
-  // surface"). A boss side a fraction of the tolerance inside the plate's side becomes
-  // adjacent to it when its pinch is zipped: solved apart, the smaller face tilts to meet
-  // the other along their new edge (3 degrees on a scan part), and pass 8 no longer sees
-  // one face; solved together, they are coplanar and pass 8 merges them.
+  // Adjacent planar faces that are one plane within the tolerance share one plane in the
+  // solve (issue 16: "faces the repair made one share one surface"). A boss side a
+  // fraction of the tolerance inside the plate's side becomes adjacent to it when its
+  // pinch is zipped: solved apart, the smaller face tilts to meet the other along their
+  // new edge (3 degrees on a scan part), and pass 8 no longer sees one face; solved
+  // together, they are coplanar and pass 8 merges them. "One plane": for faces already
+  // adjacent before the repair, pass 8's own test (surface_deviation); for faces the
+  // repair made adjacent, that one plane fits both faces' samples within the tolerance
+  // (pass 8's refit test: two fits of one scanned plane differ by up to twice that).
   std::vector<std::size_t> tie(faces.size());
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = i;
   auto root = [&](std::size_t i) {
@@ -387,8 +394,16 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         if (it == face_index.end() || it->second == i || root(it->second) == root(i)) continue;
         if (!std::holds_alternative<geo::Plane>(b.surface(g))) continue;
         const OriginalFace &oi = original.at(faces[i]), &og = original.at(g);
-        if (geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples) <= tol.length)
-          tie[root(it->second)] = root(i);
+        bool one_plane;
+        if (oi.neighbours.count(g)) {
+          one_plane = geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples) <= tol.length;
+        } else {
+          std::vector<geo::Vec3> both = oi.samples;
+          both.insert(both.end(), og.samples.begin(), og.samples.end());
+          geo::SurfaceFit fit = geo::fit_surface_like(oi.surface, both);
+          one_plane = fit.problem.empty() && fit.max_deviation <= tol.length;
+        }
+        if (one_plane) tie[root(it->second)] = root(i);
       }
   }
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = root(i);

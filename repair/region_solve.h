@@ -17,6 +17,7 @@
 #include "repair/touched.h"
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ namespace kintsugi::detail {
 struct OriginalFace {
   geo::Surface surface;
   std::vector<geo::Vec3> samples;
+  std::set<FaceH> neighbours;  // the faces across its edges
 };
 using OriginalFaces = std::map<FaceH, OriginalFace>;
 

@@ -185,7 +185,7 @@ PinnedQuad pinned_quad(const std::array<double, 4>& lift) {
   }
   for (LoopH l : b.loops_of(s.quad))
     for (HalfedgeH h : b.loop_halfedges(l)) s.corners.push_back(b.origin(h));
-  s.original[s.quad] = {b.surface(s.quad), corners(b, s.quad)};
+  s.original[s.quad] = {b.surface(s.quad), corners(b, s.quad), {}};
   std::map<VertexH, geo::Vec3> moved;
   for (std::size_t i = 0; i < 4; ++i) moved[s.corners[i]] = b.point(s.corners[i]) + geo::Vec3(0, 0, lift[i]);
   std::set<FaceH> around;
