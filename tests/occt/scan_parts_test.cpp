@@ -333,11 +333,13 @@ void expect_case_passes(std::uint64_t base, int i) {
 // --gtest_also_run_disabled_tests.
 TEST(ScanParts, DISABLED_SmallFaceNotchIsNotAPinch) { expect_case_passes(2, 64); }
 
-// Measured 2026-12-01 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
-// (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 23 of 26
-// judged cases passed (0.885; 10 skipped: no place for the defect; 24 of 26 with the
-// reverted dent rule above). A drop below 0.85 means a repair got worse on these parts.
-constexpr double kPassRateFloor = 0.85;
+// Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
+// (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
+// judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
+// the face-sense gate, the tied planes of the region solve and the pipeline's rounds.
+// Other seed bases, 96 cases each: 71/73 (base 5), 75/75 (base 7). A drop below 0.92
+// (two failures) means a repair got worse on these parts.
+constexpr double kPassRateFloor = 0.92;
 
 TEST(ScanParts, ScoreTable) {
   std::vector<Designer> parts = designers();
