@@ -57,10 +57,16 @@ PointKey key_of(const geo::Vec3& p) {
 
 }  // namespace
 
+// The coarsest step: an octagon. Features this coarse are a few chordal tolerances
+// across, a few pixels when the whole model is in view; at 13 segments a turn (0.5 rad)
+// the bosses of a 100,000-face model made the page 2.7 million triangles
+// (docs/benchmarks.md).
+constexpr double kMaxAngleStep = 0.8;
+
 double angle_step(double radius, double chordal) {
-  if (!(radius > 0) || !(chordal > 0)) return 0.5;
+  if (!(radius > 0) || !(chordal > 0)) return kMaxAngleStep;
   const double c = std::min(1.0, chordal / radius);
-  return std::clamp(2 * std::acos(1 - c), 0.01, 0.5);
+  return std::clamp(2 * std::acos(1 - c), 0.01, kMaxAngleStep);
 }
 
 double default_chordal(const Body& b) {

@@ -34,7 +34,7 @@ struct BodyMesh {
 };
 
 // The angle step (radians) that keeps a circle of radius `radius` within `chordal` of
-// its chords: r (1 - cos(θ/2)) = chordal, kept within [0.01, 0.5] (at least 13 and at
+// its chords: r (1 - cos(θ/2)) = chordal, kept within [0.01, 0.8] (at least 8 and at
 // most 629 segments per turn).
 double angle_step(double radius, double chordal);
 

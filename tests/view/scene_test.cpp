@@ -63,9 +63,9 @@ TEST(Tessellate, AngleStep) {
     const double a = angle_step(r, 1e-3 * r);
     EXPECT_NEAR(r * (1 - std::cos(a / 2)), 1e-3 * r, 1e-12 * r);
   }
-  EXPECT_EQ(angle_step(1.0, 10.0), 0.5);     // coarser than a chord of half a radian is never taken
+  EXPECT_EQ(angle_step(1.0, 10.0), 0.8);     // coarser than an octagon is never taken
   EXPECT_EQ(angle_step(1.0, 1e-12), 0.01);  // nor finer than 629 segments a turn
-  EXPECT_EQ(angle_step(0.0, 1e-3), 0.5);
+  EXPECT_EQ(angle_step(0.0, 1e-3), 0.8);
 }
 
 nlohmann::json box_scene(const Body& b, std::vector<ProblemEntry> problems) {
