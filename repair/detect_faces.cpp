@@ -264,7 +264,10 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
                       std::holds_alternative<geo::Line>(b.curve(edge_of(best.b)));
       Problem p;
       p.type = ProblemType::pinched_face;
-      p.elements = {f, edge_of(best.a), edge_of(best.b)};
+      // The two sides in index order: which one the loop meets first depends on the
+      // operators' history, and a problem found again later must name them the same way
+      // (the audit and the pipeline's queues compare problems by their elements).
+      p.elements = {f, std::min(edge_of(best.a), edge_of(best.b)), std::max(edge_of(best.a), edge_of(best.b))};
       p.measure = best.dist;
       p.measure_kind = Measure::distance;
       // A place that reaches a short stretch is a spike even where its closest pair is
