@@ -83,7 +83,12 @@ std::string place(RepairContext& c, const std::vector<VertexH>& vs) {
   for (VertexH v : vs) {
     auto outs = b.outgoing(v);
     if (outs.size() == 2 && edge_of(outs[0]) != edge_of(outs[1])) {
-      auto pair = [&](HalfedgeH h) { return std::minmax(b.face(h), b.face(twin(h))); };
+      // By value: std::minmax of two temporaries returns references to them, dangling
+      // once the lambda returns (AddressSanitizer: stack-use-after-scope).
+      auto pair = [&](HalfedgeH h) {
+        const FaceH x = b.face(h), y = b.face(twin(h));
+        return std::pair<FaceH, FaceH>(std::min(x, y), std::max(x, y));
+      };
       if (pair(outs[0]) == pair(outs[1])) {
         // The longer edge (the one beyond the sliver) keeps its handle: a problem at its
         // far end keeps its identity.
