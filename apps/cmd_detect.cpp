@@ -15,7 +15,8 @@ const char* kHelp =
     "small_face_chain, sliver_face, short_edge_chain, same_geometry_faces, small_face,\n"
     "mergeable_edges, short_edge. Read-only.\n\n"
     "  --tol T  the length tolerance, in the file's units; without it, the file's\n"
-    "           meta.tolerance is used, else 1e-3 x the model size (said on stderr)\n"
+    "           meta.tolerance is used, else 1e-3 x the model size (said on stderr);\n"
+    "           refused (exit 2) at or above the model size, or below 1e-6 of it\n"
     "  --json   one JSON document: {\"tolerance\", \"problems\": [{\"type\", \"elements\",\n"
     "           \"measure\", \"subcase\"}], \"counts\": {every type: n}}\n\n"
     "Exit: 0 whether or not problems were found; 2 unreadable input or bad usage.\n";

@@ -194,6 +194,16 @@ expect 2 "beautify over its input" -- "$K" beautify "$dir/pyr_short.json" -o "$d
 expect 2 "beautify bad tolerance" -- "$K" beautify "$dir/pyr_short.json" --tol -1 -o "$dir/x.json"
 contains "positive" "a bad tolerance is explained"
 expect 2 "beautify a missing file" -- "$K" beautify "$dir/nope.json" -o "$dir/x.json"
+# A tolerance as large as the model (every feature a defect) or below a millionth of it
+# (nothing decidable; a tolerance of 1e-12 once kept beautify busy for minutes): refused
+# at once, nothing written.
+rm -f "$dir/x.json"
+expect 2 "beautify a tolerance larger than the model" -- timeout 60 "$K" beautify "$dir/pyr_short.json" --tol 1000 -o "$dir/x.json"
+contains "not smaller than the model itself" "a tolerance larger than the model is explained"
+expect 2 "beautify a tolerance far below the model's precision" -- timeout 60 "$K" beautify "$dir/paper1.json" --tol 1e-12 -o "$dir/x.json"
+contains "below a millionth of the model's size" "a tolerance too small is explained"
+expect 2 "detect a tolerance larger than the model" -- timeout 60 "$K" detect "$dir/pyr_short.json" --tol 1000
+[ -e "$dir/x.json" ] && { fail=$((fail + 1)); echo "FAIL: an output was written for a refused tolerance"; } || pass=$((pass + 1))
 
 # demo: every paper object, none crashed and none differs from its expected counts
 expect 0 "demo" -- "$K" demo
