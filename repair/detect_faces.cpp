@@ -243,9 +243,18 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
     for (const std::vector<std::size_t>& occ : occurrences(b, pairs)) {
       // Equally close pairs (a block's base edge and its side edge, both closest at their
       // common corner): the one that runs along the other side is where the pinch is.
+      // Pairs as close and as parallel as each other (a notch of small faces: several
+      // short edges at one distance from the other side) go by their edges' indices:
+      // rounding must not choose, or the problem found would change with the model's
+      // scale or position (Detect.ScalingModelAndToleranceChangesNothing).
+      auto edges_of = [&](std::size_t i) {
+        const auto x = edge_of(pairs[i].a).idx(), y = edge_of(pairs[i].b).idx();
+        return std::pair(std::min(x, y), std::max(x, y));  // by value (std::minmax of temporaries dangles)
+      };
       auto closer = [&](std::size_t i, std::size_t j) {
         if (std::abs(pairs[i].dist - pairs[j].dist) > c.tol.precision) return pairs[i].dist < pairs[j].dist;
-        return pairs[i].parallel > pairs[j].parallel;
+        if (std::abs(pairs[i].parallel - pairs[j].parallel) > 1e-9) return pairs[i].parallel > pairs[j].parallel;
+        return edges_of(i) < edges_of(j);
       };
       const ClosePair& best = pairs[*std::min_element(occ.begin(), occ.end(), closer)];
       // Other pairs at the place count only where they come close away from the closest

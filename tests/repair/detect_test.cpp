@@ -213,6 +213,8 @@ RC_GTEST_PROP(Detect, ScalingModelAndToleranceChangesNothing, ()) {
   for (EdgeH e : b.edges()) b.set_curve(e, scaled(b.curve(e), k));
   for (FaceH f : b.faces()) b.set_surface(f, scaled(b.surface(f), k), b.same_sense(f));
   Detection da = detect(a, tol_for(a, t)), db = detect(b, tol_for(b, t * k));
+  RC_LOG() << "injected " << problem_name(type) << ", scale " << k << "\nfound at scale 1:\n"
+           << describe(da) << "found scaled:\n" << describe(db);
   RC_ASSERT(da.counts == db.counts);
   RC_ASSERT(da.problems.size() == db.problems.size());
   for (std::size_t i = 0; i < da.problems.size(); ++i) {
