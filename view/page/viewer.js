@@ -68,11 +68,22 @@
     o.frustumCulled = false;
     return o;
   }
+  // Four components a vertex on the GPU: Vulkan need not read three 16-bit or 8-bit
+  // components natively, and ANGLE's conversion of them made SwiftShader's first frame
+  // of a 100,000-face page about 0.7 s slower (docs/benchmarks.md).
+  function four(xyz, fill) {
+    var n = xyz ? xyz.length / 3 : fill.n, out = xyz ? new Uint16Array(4 * n) : new Uint8Array(4 * n);
+    for (var i = 0; i < n; ++i) {
+      if (xyz) { out[4 * i] = xyz[3 * i]; out[4 * i + 1] = xyz[3 * i + 1]; out[4 * i + 2] = xyz[3 * i + 2]; } else {
+        out[4 * i] = fill.rgb[0]; out[4 * i + 1] = fill.rgb[1]; out[4 * i + 2] = fill.rgb[2]; out[4 * i + 3] = 255;
+      }
+    }
+    return out;
+  }
   var views = scene.models.map(function (m) {
     var s3 = new THREE.Scene();
-    var positions = u16(m.mesh.positions);
-    var colours = new Uint8Array(positions.length);
-    for (var i = 0; i < colours.length; i += 3) { colours[i] = base8[0]; colours[i + 1] = base8[1]; colours[i + 2] = base8[2]; }
+    var positions = u16(m.mesh.positions), positions4 = four(positions);
+    var colours = four(null, { n: positions.length / 3, rgb: base8 });
     var shaded = new THREE.MeshLambertMaterial({
       vertexColors: THREE.VertexColors, side: THREE.DoubleSide,
       polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1
@@ -81,10 +92,13 @@
     var first = 0, triangles = 0;
     m.mesh.chunks.forEach(function (c) {
       var g = new THREE.BufferGeometry();
+      // Normals from the three-component view (what computeVertexNormals reads), then
+      // the four-component positions drawn.
       g.setAttribute('position', new THREE.BufferAttribute(positions.subarray(3 * first, 3 * (first + c.vertices)), 3, true));
-      g.setAttribute('color', new THREE.BufferAttribute(colours.subarray(3 * first, 3 * (first + c.vertices)), 3, true));
       g.setIndex(new THREE.BufferAttribute(c.index_bytes === 4 ? u32(c.indices) : u16(c.indices), 1));
       g.computeVertexNormals();
+      g.setAttribute('position', new THREE.BufferAttribute(positions4.subarray(4 * first, 4 * (first + c.vertices)), 4, true));
+      g.setAttribute('color', new THREE.BufferAttribute(colours.subarray(4 * first, 4 * (first + c.vertices)), 4, true));
       s3.add(onGrid(new THREE.Mesh(g, shaded)));
       triangles += g.index.count / 3;
       first += c.vertices;
@@ -97,7 +111,7 @@
     for (e = 0; e + 1 < edgePoints.length; ++e)
       for (var p = edgePoints[e]; p + 1 < edgePoints[e + 1]; ++p) { lineIndex[k++] = p; lineIndex[k++] = p + 1; }
     var lg = new THREE.BufferGeometry();
-    lg.setAttribute('position', new THREE.BufferAttribute(linePositions, 3, true));
+    lg.setAttribute('position', new THREE.BufferAttribute(four(linePositions), 4, true));
     lg.setIndex(new THREE.BufferAttribute(lineIndex, 1));
     s3.add(onGrid(new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0x1e1e1e }))));
 
@@ -122,7 +136,7 @@
       var r = Math.round(255 * tint.r), g = Math.round(255 * tint.g), b = Math.round(255 * tint.b);
       mark.faces.forEach(function (f) {
         for (var i = v.faceVertices[f]; i < v.faceVertices[f + 1]; ++i) {
-          v.colours[3 * i] = r; v.colours[3 * i + 1] = g; v.colours[3 * i + 2] = b;
+          v.colours[4 * i] = r; v.colours[4 * i + 1] = g; v.colours[4 * i + 2] = b;
         }
       });
       if (mark.lines.length) (v.segments[p.type] = v.segments[p.type] || []).push.apply(v.segments[p.type], mark.lines);
