@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -57,7 +57,8 @@ void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 // every axis: half the bytes of float32, and the page draws them as they are (a
 // normalised attribute and the mesh's scale and offset undo the grid on the GPU), so
 // nothing is decoded in JavaScript. The error is at most half a step, 1/131070 of the
-// model's largest extent: below a pixel until the view is 1/100 of the model across.
+// model's largest extent: a step is below a pixel of a 1,000-pixel view until the view
+// is about 1/65 of the model across (docs/benchmarks.md).
 struct Grid {
   geo::Vec3 low = geo::Vec3::Zero();  // relative to the scene's origin
   double step = 1.0;
@@ -117,8 +118,8 @@ Drawn draw(const Body& b, double chordal) {
   return d;
 }
 
-// The faces' triangles in chunks of whole faces with fewer than 65535 vertices each, so
-// their indices are 16 bits, counted from the chunk's first vertex (WebGL 1 draws 16-bit
+// The faces' triangles in chunks of whole faces with at most 65535 vertices each, so
+// their indices are 16 bits (0 to 65534), counted from the chunk's first vertex (WebGL 1 draws 16-bit
 // indices natively, and 65535 is kept free: WebGL 2 reads it as a primitive restart).
 // A face with more vertices than that is a chunk of its own with 32-bit indices.
 constexpr std::size_t kChunkVertices = 65535;
@@ -148,7 +149,10 @@ nlohmann::json model_json(const Drawn& d, const std::string& name, const geo::Ve
     for (const geo::Vec3& p : f.vertices) positions.add(p, origin, grid);
     const std::uint32_t base = nv - std::uint32_t(chunk_start);
     for (const auto& t : f.triangles)
-      for (std::uint32_t i : t) wide ? put32(chunk_indices, base + i) : put16(chunk_indices, base + i);
+      for (std::uint32_t i : t) {
+        if (wide) put32(chunk_indices, base + i);
+        else put16(chunk_indices, base + i);
+      }
     nv += std::uint32_t(f.vertices.size());
     if (wide) close_chunk();
     if (!f.problem.empty()) untessellated.push_back({{"face", f.face.str()}, {"reason", f.problem}});
