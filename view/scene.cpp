@@ -2,9 +2,10 @@
 
 #include "view/tessellate.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
-#include <cstring>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -45,17 +46,38 @@ std::string base64(const std::uint8_t* data, std::size_t n) {
 
 // Little-endian bytes whatever the machine, so the page (typed arrays on a
 // little-endian browser) and the bytes of the file do not depend on it.
+void put16(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int i = 0; i < 2; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+}
 void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
 }
-struct F32 {
+
+// Positions as 16-bit integers on a grid over the scene's bounds, the same step on
+// every axis: half the bytes of float32, and the page draws them as they are (a
+// normalised attribute and the mesh's scale and offset undo the grid on the GPU), so
+// nothing is decoded in JavaScript. The error is at most half a step, 1/131070 of the
+// model's largest extent: a step is below a pixel of a 1,000-pixel view until the view
+// is about 1/65 of the model across (docs/benchmarks.md).
+struct Grid {
+  geo::Vec3 low = geo::Vec3::Zero();  // relative to the scene's origin
+  double step = 1.0;
+  static Grid over(const geo::Box& b, const geo::Vec3& origin) {
+    Grid g;
+    if (b.empty()) return g;
+    g.low = b.min - origin;
+    const double extent = (b.max - b.min).maxCoeff();
+    if (extent > 0) g.step = extent / kGridMax;
+    return g;
+  }
+  static constexpr double kGridMax = 65535.0;
+};
+struct Q16 {
   std::vector<std::uint8_t> bytes;
-  void add(const geo::Vec3& p, const geo::Vec3& origin) {
+  void add(const geo::Vec3& p, const geo::Vec3& origin, const Grid& g) {
     for (int i = 0; i < 3; ++i) {
-      const float f = float(p[i] - origin[i]);
-      std::uint32_t u;
-      std::memcpy(&u, &f, sizeof u);
-      put32(bytes, u);
+      const double q = std::round((p[i] - origin[i] - g.low[i]) / g.step);
+      put16(bytes, std::uint32_t(std::clamp(q, 0.0, Grid::kGridMax)));
     }
   }
   std::string str() const { return base64(bytes.data(), bytes.size()); }
@@ -96,26 +118,50 @@ Drawn draw(const Body& b, double chordal) {
   return d;
 }
 
-nlohmann::json model_json(const Drawn& d, const std::string& name, const geo::Vec3& origin) {
-  F32 positions, line_positions;
-  U32 face_vertices, indices, face_triangles, edge_points;
+// The faces' triangles in chunks of whole faces with at most 65535 vertices each, so
+// their indices are 16 bits (0 to 65534), counted from the chunk's first vertex (WebGL 1 draws 16-bit
+// indices natively, and 65535 is kept free: WebGL 2 reads it as a primitive restart).
+// A face with more vertices than that is a chunk of its own with 32-bit indices.
+constexpr std::size_t kChunkVertices = 65535;
+
+nlohmann::json model_json(const Drawn& d, const std::string& name, const geo::Vec3& origin, const Grid& grid) {
+  Q16 positions, line_positions;
+  U32 face_vertices, edge_points;
+  nlohmann::json chunks = nlohmann::json::array();
   nlohmann::json untessellated = nlohmann::json::array();
-  std::uint32_t nv = 0, nt = 0, np = 0;
+  std::uint32_t nv = 0, np = 0;
+  std::size_t chunk_start = 0;  // first vertex of the chunk being filled
+  std::vector<std::uint8_t> chunk_indices;
+  bool wide = false;
+  auto close_chunk = [&] {
+    if (nv > chunk_start)
+      chunks.push_back({{"vertices", nv - chunk_start},
+                        {"index_bytes", wide ? 4 : 2},
+                        {"indices", base64(chunk_indices.data(), chunk_indices.size())}});
+    chunk_start = nv;
+    chunk_indices.clear();
+    wide = false;
+  };
   for (const FaceMesh& f : d.mesh.faces) {
     face_vertices.add(nv);
-    face_triangles.add(nt);
-    for (const geo::Vec3& p : f.vertices) positions.add(p, origin);
+    if (nv + f.vertices.size() - chunk_start > kChunkVertices) close_chunk();
+    if (f.vertices.size() > kChunkVertices) wide = true;
+    for (const geo::Vec3& p : f.vertices) positions.add(p, origin, grid);
+    const std::uint32_t base = nv - std::uint32_t(chunk_start);
     for (const auto& t : f.triangles)
-      for (std::uint32_t i : t) indices.add(nv + i);
+      for (std::uint32_t i : t) {
+        if (wide) put32(chunk_indices, base + i);
+        else put16(chunk_indices, base + i);
+      }
     nv += std::uint32_t(f.vertices.size());
-    nt += std::uint32_t(f.triangles.size());
+    if (wide) close_chunk();
     if (!f.problem.empty()) untessellated.push_back({{"face", f.face.str()}, {"reason", f.problem}});
   }
+  close_chunk();
   face_vertices.add(nv);
-  face_triangles.add(nt);
   for (const EdgePolyline& e : d.mesh.edges) {
     edge_points.add(np);
-    for (const geo::Vec3& p : e.points) line_positions.add(p, origin);
+    for (const geo::Vec3& p : e.points) line_positions.add(p, origin, grid);
     np += std::uint32_t(e.points.size());
   }
   edge_points.add(np);
@@ -124,11 +170,7 @@ nlohmann::json model_json(const Drawn& d, const std::string& name, const geo::Ve
           {"faces", c.faces},
           {"edges", c.edges},
           {"vertices", c.vertices},
-          {"mesh",
-           {{"positions", positions.str()},
-            {"face_vertices", face_vertices.str()},
-            {"indices", indices.str()},
-            {"face_triangles", face_triangles.str()}}},
+          {"mesh", {{"positions", positions.str()}, {"face_vertices", face_vertices.str()}, {"chunks", chunks}}},
           {"lines", {{"positions", line_positions.str()}, {"edge_points", edge_points.str()}}},
           {"untessellated", untessellated}};
 }
@@ -214,17 +256,19 @@ nlohmann::json scene_json(const PageInput& in) {
   }
   const geo::Vec3 origin = all.empty() ? geo::Vec3::Zero() : all.centre();
   nlohmann::json j;
-  j["format"] = "kintsugi-view/1";
+  j["format"] = "kintsugi-view/2";
   j["title"] = in.title;
   j["units"] = in.units;
   j["tolerance"] = in.tolerance;
   j["chordal"] = chordal;
   j["origin"] = {origin.x(), origin.y(), origin.z()};
   j["size"] = all.diagonal();
+  const Grid grid = Grid::over(all, origin);
+  j["grid"] = {{"low", {grid.low.x(), grid.low.y(), grid.low.z()}}, {"step", grid.step}};
   j["colors"] = nlohmann::json::object();
   for (const auto& [type, colour] : colour_table()) j["colors"][type] = colour;
   j["models"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < drawn.size(); ++i) j["models"].push_back(model_json(drawn[i], in.models[i].name, origin));
+  for (std::size_t i = 0; i < drawn.size(); ++i) j["models"].push_back(model_json(drawn[i], in.models[i].name, origin, grid));
   j["problems"] = nlohmann::json::array();
   for (const ProblemEntry& p : in.problems) {
     nlohmann::json e = {{"type", p.type},

@@ -7,22 +7,27 @@
 // (handles in order, objects with sorted keys, fixed binary layouts; no time, no paths
 // beyond the title the caller gives).
 //
-// Layout (format "kintsugi-view/1"):
+// Layout (format "kintsugi-view/2"):
 //   {"format", "title", "units", "tolerance", "chordal", "origin": [x,y,z], "size",
+//    "grid": {"low": [x,y,z], "step"},
 //    "colors": {type: "#rrggbb"},
 //    "models": [{"name", "faces", "edges", "vertices",
-//                "mesh": {"positions": f32, "face_vertices": u32, "indices": u32,
-//                         "face_triangles": u32},
-//                "lines": {"positions": f32, "edge_points": u32},
+//                "mesh": {"positions": q16, "face_vertices": u32,
+//                         "chunks": [{"vertices", "index_bytes": 2 or 4, "indices": u16 or u32}]},
+//                "lines": {"positions": q16, "edge_points": u32},
 //                "untessellated": [{"face", "reason"}]}],
 //    "problems": [{"type", "elements", "measure", "measure_name", "subcase", "action",
 //                  "resolved", "operators", "reason", "deviation", "anchor": [x,y,z], "radius",
 //                  "marks": [{"model", "faces": [face positions in that model's mesh],
 //                             "lines": [x,y,z, x,y,z, ...  segment pairs], "points": [x,y,z, ...],
 //                             "missing": [elements not alive in that model]}]}]}
-//   f32/u32: base64 of little-endian float32/uint32 arrays. Positions are relative to
-//   "origin" (the centre of the models' bounds), so float32 keeps their precision.
-//   face_vertices/face_triangles/edge_points: offsets, one per face/edge plus the end.
+//   u16/u32: base64 of little-endian uint16/uint32 arrays. Coordinates are relative to
+//   "origin" (the centre of the models' bounds). q16: positions as uint16 triples q on a
+//   grid, the point being low + step * q (within half a step of the tessellation's;
+//   the marks, anchors and radii are exact).
+//   Chunks: consecutive runs of whole faces, in order, whose indices count from the
+//   chunk's first vertex; 16 bits unless one face has more than 65535 vertices.
+//   face_vertices/edge_points: offsets, one per face/edge plus the end.
 #pragma once
 
 #include "kernel/body.h"

@@ -145,7 +145,7 @@ try:
     check([i.get("data-type") for i in dom.items] == [p["type"] for p in problems], "entries in detect's order with its types")
     check(len(dom.labels) == 1 and "faces" in dom.labels[0], "one model shown: %s" % dom.labels)
     scene = json.loads(dom.scene)
-    check(len(scene["models"]) == 1 and len(scene["models"][0]["mesh"]["indices"]) > 0, "the model is tessellated")
+    check(len(scene["models"]) == 1 and len(scene["models"][0]["mesh"]["chunks"]) > 0, "the model is tessellated")
 
     # The picture: each problem type's colour where its problems project, not in an empty corner.
     picture = os.path.join(work, "paper10.png")

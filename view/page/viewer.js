@@ -6,6 +6,7 @@
   'use strict';
   var timing = { start: performance.now() };  // since navigation: the page read and its scripts parsed
   var scene = JSON.parse(document.getElementById('scene').textContent);
+  timing.parsed = performance.now();  // the scene's JSON parsed
   var params = new URLSearchParams(window.location.search);
   var still = params.get('still') === '1';
   if (still) document.body.classList.add('still');
@@ -21,12 +22,13 @@
 
   // ---- data ------------------------------------------------------------------------
   function bytes(b64) {
+    if (Uint8Array.fromBase64) return Uint8Array.fromBase64(b64).buffer;  // native where the browser has it
     var s = atob(b64), out = new Uint8Array(s.length);
     for (var i = 0; i < s.length; ++i) out[i] = s.charCodeAt(i);
     return out.buffer;
   }
-  function floats(b64) { return new Float32Array(bytes(b64)); }
-  function uints(b64) { return new Uint32Array(bytes(b64)); }
+  function u16(b64) { return new Uint16Array(bytes(b64)); }
+  function u32(b64) { return new Uint32Array(bytes(b64)); }
   function colourOf(type) { return new THREE.Color(scene.colors[type] || '#808080'); }
   var size = scene.size > 0 ? scene.size : 1;
 
@@ -55,40 +57,70 @@
 
   // ---- models ----------------------------------------------------------------------
   var base = new THREE.Color(0xc9ccd1);
+  var base8 = [Math.round(255 * base.r), Math.round(255 * base.g), Math.round(255 * base.b)];
+  // Positions arrive as 16-bit grid coordinates (view/scene.h): drawn as a normalised
+  // attribute (0..1), which the object's scale and offset put back in place.
+  // three.js r111 computes bounding spheres from the raw integers, which would cull
+  // these objects wrongly: they are never culled (the model is mostly in view anyway).
+  function onGrid(o) {
+    o.position.fromArray(scene.grid.low);
+    o.scale.setScalar(scene.grid.step * 65535);
+    o.frustumCulled = false;
+    return o;
+  }
+  // Four components a vertex on the GPU: Vulkan need not read three 16-bit or 8-bit
+  // components natively, and ANGLE's conversion of them made SwiftShader's first frame
+  // of a 100,000-face page about 0.7 s slower (docs/benchmarks.md).
+  function four(xyz, fill) {
+    var n = xyz ? xyz.length / 3 : fill.n, out = xyz ? new Uint16Array(4 * n) : new Uint8Array(4 * n);
+    for (var i = 0; i < n; ++i) {
+      if (xyz) { out[4 * i] = xyz[3 * i]; out[4 * i + 1] = xyz[3 * i + 1]; out[4 * i + 2] = xyz[3 * i + 2]; } else {
+        out[4 * i] = fill.rgb[0]; out[4 * i + 1] = fill.rgb[1]; out[4 * i + 2] = fill.rgb[2]; out[4 * i + 3] = 255;
+      }
+    }
+    return out;
+  }
   var views = scene.models.map(function (m) {
     var s3 = new THREE.Scene();
-    var positions = floats(m.mesh.positions);
-    var colours = new Float32Array(positions.length);
-    for (var i = 0; i < colours.length; i += 3) { colours[i] = base.r; colours[i + 1] = base.g; colours[i + 2] = base.b; }
-    var g = new THREE.BufferGeometry();
-    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    g.setIndex(new THREE.BufferAttribute(uints(m.mesh.indices), 1));
-    g.computeVertexNormals();
+    var positions = u16(m.mesh.positions), positions4 = four(positions);
+    var colours = four(null, { n: positions.length / 3, rgb: base8 });
     var shaded = new THREE.MeshLambertMaterial({
       vertexColors: THREE.VertexColors, side: THREE.DoubleSide,
       polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1
     });
-    s3.add(new THREE.Mesh(g, shaded));
+    // One mesh per chunk of faces, each with its own 16-bit indices.
+    var first = 0, triangles = 0;
+    m.mesh.chunks.forEach(function (c) {
+      var g = new THREE.BufferGeometry();
+      // Normals from the three-component view (what computeVertexNormals reads), then
+      // the four-component positions drawn.
+      g.setAttribute('position', new THREE.BufferAttribute(positions.subarray(3 * first, 3 * (first + c.vertices)), 3, true));
+      g.setIndex(new THREE.BufferAttribute(c.index_bytes === 4 ? u32(c.indices) : u16(c.indices), 1));
+      g.computeVertexNormals();
+      g.setAttribute('position', new THREE.BufferAttribute(positions4.subarray(4 * first, 4 * (first + c.vertices)), 4, true));
+      g.setAttribute('color', new THREE.BufferAttribute(colours.subarray(4 * first, 4 * (first + c.vertices)), 4, true));
+      s3.add(onGrid(new THREE.Mesh(g, shaded)));
+      triangles += g.index.count / 3;
+      first += c.vertices;
+    });
 
-    var linePositions = floats(m.lines.positions), edgePoints = uints(m.lines.edge_points);
+    var linePositions = u16(m.lines.positions), edgePoints = u32(m.lines.edge_points);
     var segments = 0;
     for (var e = 0; e + 1 < edgePoints.length; ++e) segments += Math.max(0, edgePoints[e + 1] - edgePoints[e] - 1);
     var lineIndex = new Uint32Array(2 * segments), k = 0;
     for (e = 0; e + 1 < edgePoints.length; ++e)
       for (var p = edgePoints[e]; p + 1 < edgePoints[e + 1]; ++p) { lineIndex[k++] = p; lineIndex[k++] = p + 1; }
     var lg = new THREE.BufferGeometry();
-    lg.setAttribute('position', new THREE.BufferAttribute(linePositions, 3));
+    lg.setAttribute('position', new THREE.BufferAttribute(four(linePositions), 4, true));
     lg.setIndex(new THREE.BufferAttribute(lineIndex, 1));
-    s3.add(new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0x1e1e1e })));
+    s3.add(onGrid(new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0x1e1e1e }))));
 
     s3.add(new THREE.AmbientLight(0xffffff, 0.5));
     var light = new THREE.DirectionalLight(0xffffff, 0.6);
     s3.add(light);
     return {
-      model: m, scene: s3, light: light, colours: colours, colourAttribute: g.getAttribute('color'),
-      triangles: g.index.count / 3,
-      faceVertices: uints(m.mesh.face_vertices), lineMaterials: [],
+      model: m, scene: s3, light: light, colours: colours, triangles: triangles,
+      faceVertices: u32(m.mesh.face_vertices), lineMaterials: [],
       segments: {}, dots: [], dotColours: [], anchors: [], anchorColours: []
     };
   });
@@ -101,9 +133,10 @@
       // A pinched face is the context of its two close edges: a light tint, so the
       // edges and the smaller problems on it stay visible.
       var tint = base.clone().lerp(c, p.type === 'pinched_face' ? 0.3 : 0.85);
+      var r = Math.round(255 * tint.r), g = Math.round(255 * tint.g), b = Math.round(255 * tint.b);
       mark.faces.forEach(function (f) {
         for (var i = v.faceVertices[f]; i < v.faceVertices[f + 1]; ++i) {
-          v.colours[3 * i] = tint.r; v.colours[3 * i + 1] = tint.g; v.colours[3 * i + 2] = tint.b;
+          v.colours[4 * i] = r; v.colours[4 * i + 1] = g; v.colours[4 * i + 2] = b;
         }
       });
       if (mark.lines.length) (v.segments[p.type] = v.segments[p.type] || []).push.apply(v.segments[p.type], mark.lines);
@@ -128,7 +161,6 @@
     return o;
   }
   views.forEach(function (v) {
-    v.colourAttribute.needsUpdate = true;
     // Sorted by type so the drawing order, like everything else, depends only on the data.
     Object.keys(v.segments).sort().forEach(function (type) {
       var g = new THREE.LineSegmentsGeometry();
