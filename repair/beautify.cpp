@@ -25,6 +25,7 @@ const char* outcome_name(Outcome o) {
   switch (o) {
     case Outcome::repaired: return "repaired";
     case Outcome::resolved_earlier: return "resolved by an earlier repair";
+    case Outcome::resolved_later: return "resolved by a later repair";
     case Outcome::refused:
     case Outcome::no_pass: return "not repaired";
   }
@@ -340,6 +341,16 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
       r.problems_after[slot(p.type)]++;
       r.left.push_back(std::move(p));
     }
+  // A refused problem that the output no longer has was removed by a later repair (a
+  // pinch seen round a notch of small faces, gone once pass 5 merged them): calling it
+  // "not repaired" would send the user to look for a defect that is not there.
+  {
+    std::set<std::pair<ProblemType, std::vector<Element>>> still;
+    for (const Problem& p : r.left) still.insert({p.type, p.elements});
+    for (RepairEntry& e : r.problems)
+      if (e.outcome == Outcome::refused && !still.count({e.problem.type, e.problem.elements}))
+        e.outcome = Outcome::resolved_later;
+  }
   r.counts_after = b.counts();
   GeometryReport g = check_geometry(b, tol.precision);
   r.max_deviation = g.max_deviation;

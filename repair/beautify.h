@@ -31,9 +31,13 @@ enum class Outcome {
   repaired,          // its repair was committed
   resolved_earlier,  // an earlier repair removed it before its turn (its elements are gone)
   refused,           // its repair could not be made and was rolled back; `reason` says why
+  resolved_later,    // refused (`reason` says why), then gone from the output: a later
+                     // repair removed it (a pinch seen round a notch of small faces that
+                     // pass 5 then merged away)
   no_pass,           // no pass for its type is built yet
 };
-// "repaired", "resolved by an earlier repair", "not repaired" (refused and no_pass).
+// "repaired", "resolved by an earlier repair", "resolved by a later repair", "not repaired"
+// (refused and no_pass).
 const char* outcome_name(Outcome o);
 
 struct RepairEntry {

@@ -25,18 +25,24 @@ inline std::vector<std::string> identities(const std::vector<Problem>& ps) {
   return out;
 }
 
-// "" when the report's left list is exactly what detect() finds on `b` (the output);
-// otherwise both lists.
+// "" when the report's left list is exactly what detect() finds on `b` (the output) and
+// every problem reported "not repaired" is among them; otherwise what differs.
 inline std::string left_mismatch(const Body& b, const geo::Tolerances& tol, const BeautifyReport& r) {
   const auto want = identities(detect(b, tol).problems);
   const auto got = identities(r.left);
-  if (want == got) return "";
   auto joined = [](const std::vector<std::string>& v) {
     std::string s;
     for (const auto& x : v) s += "  " + x + "\n";
     return s;
   };
-  return "detect() on the output:\n" + joined(want) + "report's left:\n" + joined(got);
+  if (want != got) return "detect() on the output:\n" + joined(want) + "report's left:\n" + joined(got);
+  // Every entry reported "not repaired" names a problem the output still has (a refused
+  // problem a later repair removed is "resolved by a later repair").
+  for (const RepairEntry& e : r.problems)
+    if (e.left() && !std::binary_search(want.begin(), want.end(), identities({e.problem})[0]))
+      return "reported not repaired, but the output does not have it: " + identities({e.problem})[0] + " (" +
+             e.reason + ")";
+  return "";
 }
 
 }  // namespace kintsugi::test
