@@ -1,4 +1,4 @@
-// Detection on random defective bodies: a builder solid, up to three defects injected by
+// Detection on random defective bodies: a planar builder solid, up to three defects injected by
 // the zoo, then up to eight vertex moves of up to a few tolerances (what a careless fit
 // does: the geometry is no longer consistent, the topology still valid). What must hold:
 //   - detect is read-only: the body equals its copy from before, journal included;
@@ -46,12 +46,13 @@ bool same(const Detection& a, const Detection& b) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2 || size > 96) return 0;
   Body b;
-  switch (data[0] % 6) {
+  // Planar solids only: under ASan a curved face's area (triangulated to 1e-3 t) takes
+  // detect about 30 s on a cylinder, cone or torus, which would leave a handful of runs
+  // a minute; curved faces are fuzzed by fuzz_beautify.
+  switch (data[0] % 4) {
     case 0: b = build::box(1, 2, 3); break;
     case 1: b = build::prism(build::regular_polygon(5 + data[1] % 4, 1), 1); break;
     case 2: b = build::pyramid(build::regular_polygon(4 + data[1] % 3, 1), 1); break;
-    case 3: b = build::cylinder(1, 2); break;
-    case 4: b = build::torus(3, 1); break;
     default: b = build::grid_box(12); break;
   }
   const double t = 0.01 + 0.01 * (data[1] % 4);
