@@ -254,9 +254,12 @@ if "$K" convert --help | grep -q "STEP"; then
   sed "s/^#12 = CARTESIAN_POINT('',(0.,0.,0.));/#12 = CARTESIAN_POINT('',(1.E999,-1.E999,1.E400));/" "$h/box.step" >"$h/overflow.step"
   : >"$h/empty.step"
   : >"$h/empty.brep"
+  # Found by fuzz_occt_import: OpenCASCADE 7.6.3 dereferences a null pointer
+  # (StepShape_FaceBound::Bound) reading it; in-process that killed kintsugi (exit 139).
+  cp "$(dirname "$0")/hostile/occt_segfault.step" "$h/occt_segfault.step"
   grep -q '#9999' "$h/dangling.step" && grep -q '1.E999' "$h/overflow.step" && pass=$((pass + 1)) ||
     { fail=$((fail + 1)); echo "FAIL: the hostile STEP files were not made"; }
-  for f in truncated.step dangling.step overflow.step empty.step empty.brep hang.brep; do
+  for f in truncated.step dangling.step overflow.step empty.step empty.brep hang.brep occt_segfault.step; do
     for verb in check detect measure inject beautify convert view; do
       case $verb in
         inject) extra=(--type short_edge -o "$h/out.json") ;;
