@@ -23,6 +23,10 @@ struct Command {
 
 const std::vector<Command>& commands();
 
+// The whole command line after the program name: finds the verb and runs it. Exceptions
+// become a message on `err` and kExitBadInput (apps/dispatch.cpp).
+int run_kintsugi(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
 int cmd_generate(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_check(const std::vector<std::string>&, std::ostream&, std::ostream&);
 int cmd_inject(const std::vector<std::string>&, std::ostream&, std::ostream&);

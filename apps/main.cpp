@@ -1,75 +1,21 @@
 // kintsugi: repair the topology of reverse-engineered B-rep models.
+#include "apps/bounded_read.h"
 #include "apps/commands.h"
-#include "repair/pass.h"
 
-#include <exception>
 #include <iostream>
-#include <new>
-
-namespace kintsugi::cli {
-
-const std::vector<Command>& commands() {
-  static const std::vector<Command> table = {
-      {"generate", "write a built-in model", cmd_generate},
-      {"check", "check a model's topology and geometry", cmd_check},
-      {"inject", "insert a known defect into a model (for testing repairs)", cmd_inject},
-      {"detect", "find the eleven kinds of topological problem", cmd_detect},
-      {"beautify", "repair the topology with the passes listed below", cmd_beautify},
-      {"batch", "beautify every model in a folder, each in its own process", cmd_batch},
-      {"batch-file", "one file of a batch (run by batch)", cmd_batch_file, true},
-      {"demo", "beautify the paper's test objects and compare with the expected counts", cmd_demo},
-      {"audit", "check the paper's Table 1 (the order of the passes) on random defective models", cmd_audit},
-      {"convert", "convert between .json, .step/.stp and .brep", cmd_convert},
-      {"measure", "areas, lengths and bounding boxes of faces and edges", cmd_measure},
-      {"view", "write a page (HTML, PNG) showing a model and its problems", cmd_view},
-  };
-  return table;
-}
-
-namespace {
-void usage(std::ostream& os) {
-  os << "usage: kintsugi VERB [options]   (kintsugi VERB --help for each verb)\n\nverbs:\n";
-  for (const Command& c : commands())
-    if (!c.hidden) os << "  " << c.name << std::string(12 - std::string(c.name).size(), ' ') << c.summary << "\n";
-  os << "\nrepair passes, in the order beautify runs them (the paper's Table 1):\n";
-  for (kintsugi::ProblemType t : kintsugi::kAllProblemTypes) {
-    const kintsugi::Pass* p = kintsugi::find_pass(t);
-    os << "  " << (kintsugi::problem_order(t) < 10 ? " " : "") << kintsugi::problem_order(t) << " "
-       << kintsugi::problem_name(t) << std::string(21 - std::string(kintsugi::problem_name(t)).size(), ' ')
-       << (p ? p->summary : "(no pass yet: found and reported, not repaired)") << "\n";
-  }
-  os << "\nExit codes: 0 success, 1 invalid model (check), 2 bad input or usage, 3 some files failed (batch).\n";
-}
-}  // namespace
-
-}  // namespace kintsugi::cli
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   using namespace kintsugi::cli;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    usage(std::cerr);
+  // STEP and BREP files are read in a child process bounded in time and memory
+  // (apps/bounded_read.h): a hostile file costs an error, not a hang.
+  std::string error;
+  auto bounds = read_bounds_from_environment(&error);
+  if (!bounds) {
+    std::cerr << "kintsugi: " << error << "\n";
     return kExitBadInput;
   }
-  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-    usage(std::cout);
-    return kExitOk;
-  }
-  for (const Command& c : commands()) {
-    if (args[0] != c.name) continue;
-    try {
-      return c.run({args.begin() + 1, args.end()}, std::cout, std::cerr);
-    } catch (const std::bad_alloc&) {
-      std::cerr << "kintsugi " << c.name << ": out of memory\n";
-      return kExitBadInput;
-    } catch (const std::exception& e) {
-      // Builders and readers report bad parameters by exception; anything else is a bug,
-      // still reported rather than crashing.
-      std::cerr << "kintsugi " << c.name << ": " << e.what() << "\n";
-      return kExitBadInput;
-    }
-  }
-  std::cerr << "kintsugi: unknown verb '" << args[0] << "'\n\n";
-  usage(std::cerr);
-  return kExitBadInput;
+  bound_cad_reads(*bounds);
+  return run_kintsugi(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
 }

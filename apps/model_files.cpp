@@ -1,9 +1,7 @@
 #include "apps/model_files.h"
 
 #include "io/native_json.h"
-#ifdef KINTSUGI_HAVE_OCCT
-#include "io/occt/exchange.h"
-#endif
+#include "apps/bounded_read.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -50,7 +48,7 @@ std::optional<Model> load_model(const std::string& path, std::string* error) {
     return m;
   }
 #ifdef KINTSUGI_HAVE_OCCT
-  auto imp = io::import_cad(path, *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error);
+  auto imp = import_cad_bounded(path, *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error);
   if (!imp) return std::nullopt;
   Model m;
   m.body = std::move(imp->body);

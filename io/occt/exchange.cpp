@@ -3,6 +3,7 @@
 #include "io/occt/exchange.h"
 
 #include "io/occt/convert.h"
+#include "io/occt/step_references.h"
 
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -104,7 +105,8 @@ bool fail(std::string* error, std::string msg) {
 }
 
 // Missing, unreadable and empty files are refused before OpenCASCADE sees them.
-bool check_file(const std::string& path, std::string* text_head, std::string* text_tail, std::string* error) {
+bool check_file(const std::string& path, std::string* text_head, std::string* text_tail, std::string* error,
+                std::string* whole = nullptr) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return fail(error, path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) return fail(error, path + ": is a directory, not a file");
@@ -120,16 +122,21 @@ bool check_file(const std::string& path, std::string* text_head, std::string* te
   std::string trimmed(b, e);
   *text_head = trimmed.substr(0, 64);
   *text_tail = trimmed.size() > 64 ? trimmed.substr(trimmed.size() - 64) : trimmed;
+  if (whole) *whole = std::move(all);
   return true;
 }
 
 std::optional<CadImport> import_step(const std::string& path, std::string* error) {
-  std::string head, tail;
-  if (!check_file(path, &head, &tail, error)) return std::nullopt;
+  std::string head, tail, text;
+  if (!check_file(path, &head, &tail, error, &text)) return std::nullopt;
   if (head.rfind("ISO-10303-21", 0) != 0)
     return fail(error, path + ": not a STEP file (it does not start with ISO-10303-21;)"), std::nullopt;
   if (tail.size() < 17 || tail.find("END-ISO-10303-21") == std::string::npos)
     return fail(error, path + ": the STEP file is truncated (no END-ISO-10303-21; at its end)"), std::nullopt;
+  // OpenCASCADE would drop the entity silently (a face gone, a hole in the model).
+  if (std::string why = step_dangling_reference(text); !why.empty())
+    return fail(error, path + ": the STEP file is corrupt: " + why), std::nullopt;
+  text = std::string();
 
   std::lock_guard<std::mutex> lock(step_mutex());
   STEPControl_Reader reader;

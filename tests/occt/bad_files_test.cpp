@@ -93,6 +93,40 @@ TEST(BadFiles, StepWithoutAShape) {
   expect_refused(test::temp_file("no_shape.step", text), CadFormat::step, "no shape");
 }
 
+// OpenCASCADE drops an entity whose reference does not resolve: here a face of the box's
+// shell would vanish and leave a hole. Refused instead, naming both entities.
+TEST(BadFiles, StepWithADanglingReference) {
+  std::string path = test::temp_path("box.step");
+  std::string err;
+  ASSERT_TRUE(io::export_cad(build::box(), path, CadFormat::step, &err)) << err;
+  std::string text = slurp(path);
+  const std::size_t shell = text.find("CLOSED_SHELL('',(#");
+  ASSERT_NE(shell, std::string::npos);
+  const std::size_t ref = shell + std::string("CLOSED_SHELL('',(#").size();
+  text.replace(ref, text.find(',', ref) - ref, "99999");
+  expect_refused(test::temp_file("dangling.step", text), CadFormat::step, "refers to #99999, which the file does not define");
+  // A reference inside a string or a comment is not one.
+  std::string quoted = slurp(path);
+  quoted.insert(quoted.find("DATA;") + 5, "\n/* #99999 */");
+  quoted.replace(quoted.find("CLOSED_SHELL('"), 14, "CLOSED_SHELL('#99999");
+  std::string ok = test::temp_file("quoted.step", quoted);
+  EXPECT_TRUE(io::import_cad(ok, CadFormat::step, &err)) << err;
+}
+
+TEST(BadFiles, StepWithOverflowingNumbers) {
+  std::string path = test::temp_path("box.step");
+  std::string err;
+  ASSERT_TRUE(io::export_cad(build::box(), path, CadFormat::step, &err)) << err;
+  std::string text = slurp(path);
+  const std::size_t p = text.find("CARTESIAN_POINT('',(");
+  ASSERT_NE(p, std::string::npos);
+  const std::size_t b = p + std::string("CARTESIAN_POINT('',(").size();
+  text.replace(b, text.find(')', b) - b, "1.E999,-1.E999,1.E400");
+  std::string bad = test::temp_file("overflow.step", text);
+  EXPECT_FALSE(io::import_cad(bad, CadFormat::step, &err));
+  EXPECT_NE(err.find(bad), std::string::npos) << err;
+}
+
 TEST(BadFiles, StepReadAsBrepAndBrepReadAsStep) {
   std::string step = test::temp_file("really_step.brep", exported(CadFormat::step, "s.step"));
   expect_refused(step, CadFormat::brep, "not an OpenCASCADE BREP file");
