@@ -176,6 +176,19 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
         if (box.diagonal() < 10 * tol) continue;
         std::size_t i = rng.below(hs.size()), j = (i + 2 + rng.below(hs.size() - 3)) % hs.size();
         EdgeH e1 = edge_of(hs[i]), e2 = edge_of(hs[j]);
+        // The split runs between the two edges' midpoints; passing within 2 tol of a
+        // corner of the face it would also make a narrow piece (a pinch or a sliver: a
+        // face split twice, the second line beside the first), another defect than the
+        // one asked for (found by Beautify.InjectedDefectsOfTypes7To11AreRepaired).
+        auto mid = [&](HalfedgeH h) { return (b.point(b.origin(h)) + b.point(b.target(h))) / 2; };
+        const Vec3 m1 = mid(hs[i]), m2 = mid(hs[j]);
+        bool narrow = false;
+        for (HalfedgeH h : hs) {
+          const Vec3 p = b.point(b.origin(h)), d = m2 - m1;
+          const double s = std::clamp((p - m1).dot(d) / d.squaredNorm(), 0.0, 1.0);
+          narrow = narrow || (p - (m1 + s * d)).norm() < 2 * tol;
+        }
+        if (narrow) continue;
         double dev = tol * u();
         out.push_back({[=](Body& x) { return make::split_and_tilt(x, f, e1, e2, dev); }, f.str()});
       }
