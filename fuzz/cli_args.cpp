@@ -3,7 +3,8 @@
 // in a private scratch folder holding two input files. What must hold:
 //   - no crash, no sanitizer report, an exit code of 0, 1 or 2;
 //   - a refusal (exit 2) says why on stderr and leaves no new file behind;
-//   - the input files are never written to, and no temporary file is left behind.
+//   - a file the command reads is never written to (one named only as its output may
+//     be), and no temporary file is left behind.
 // Not fuzzed here: demo and audit (each runs for seconds to minutes whatever the
 // arguments), batch (it re-executes the running program, here the fuzzer), batch-file
 // (batch's internal child: it writes its result file where batch tells it), view --png
@@ -20,6 +21,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/stat.h>
 
 using namespace kintsugi;
 
@@ -44,6 +47,9 @@ const Scratch& scratch() {
     std::string tmpl = (fs::temp_directory_path() / "kintsugi-fuzz-cli-XXXXXX").string();
     if (!::mkdtemp(tmpl.data())) die("cannot make a scratch folder");
     s.dir = tmpl;
+    // Words taken as output names (`-o box`) are relative paths: they land here, where
+    // they are checked and removed, not in the folder the fuzzer was started from.
+    fs::current_path(s.dir);
     std::string error;
     if (!io::write_native_file((s.dir / "in.json").string(), build::box(1, 2, 3), {{"tolerance", 0.01}}, "mm", &error))
       die(error);
@@ -106,8 +112,39 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (code != cli::kExitOk && code != cli::kExitInvalid && code != cli::kExitBadInput)
     die(cmd + ": exit code " + std::to_string(code));
   if (code == cli::kExitBadInput && err.str().empty()) die(cmd + ": exit 2 without a message");
-  for (const auto& [path, bytes] : s.inputs)
-    if (slurp(path) != bytes) die(cmd + ": wrote to the input " + path.string());
+  // A scratch file named only as an output (`generate torus -o in.json`: generate reads
+  // nothing) may be written, as the user asked; a file the command also reads may not
+  // (the CLI refuses an output that is its input). Written outputs are put back so that
+  // later runs start from the same files.
+  auto same = [](const fs::path& a, const std::string& b) {
+    return a.lexically_normal() == fs::path(b).lexically_normal();
+  };
+  auto named_as_output_only = [&](const fs::path& path) {
+    bool as_output = false, elsewhere = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (!same(path, args[i])) continue;
+      const bool after_option = i > 0 && (args[i - 1] == "-o" || args[i - 1] == "--report" || args[i - 1] == "--html");
+      const bool convert_target = !args.empty() && args[0] == "convert" && i + 1 == args.size() && i >= 2;
+      (after_option || convert_target ? as_output : elsewhere) = true;
+    }
+    return as_output && !elsewhere;
+  };
+  // Written means new bytes or a new file in its place (an atomic write of the same
+  // bytes renames a new inode over it: the bytes alone would not show it).
+  static std::map<fs::path, std::pair<ino_t, std::int64_t>> stamp;
+  auto stamp_of = [](const fs::path& p) {
+    struct stat st {};
+    ::stat(p.c_str(), &st);
+    return std::pair(st.st_ino, std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec);
+  };
+  for (const auto& [path, bytes] : s.inputs) {
+    if (!stamp.count(path)) stamp[path] = stamp_of(path);
+    if (slurp(path) != bytes || stamp_of(path) != stamp[path]) {
+      if (code != cli::kExitOk || !named_as_output_only(path)) die(cmd + ": wrote to the input " + path.string());
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+      stamp[path] = stamp_of(path);
+    }
+  }
   std::vector<fs::path> made;
   for (const auto& e : fs::directory_iterator(s.dir))
     if (!s.inputs.count(e.path())) made.push_back(e.path());
