@@ -30,11 +30,29 @@ std::string slurp(const std::string& path) {
   return ss.str();
 }
 
+std::string exported_box() {
+  std::string path = test::temp_path("box.step");
+  std::string err;
+  EXPECT_TRUE(io::export_cad(build::box(), path, CadFormat::step, &err)) << err;
+  return slurp(path);
+}
+
 std::string exported(CadFormat f, const std::string& name) {
   std::string path = test::temp_path(name);
   std::string err;
   EXPECT_TRUE(io::export_cad(build::cylinder(1, 2), path, f, &err)) << err;
   return slurp(path);
+}
+
+// A box exported to STEP, with the text after the first `marker` up to the next `end`
+// replaced by `with` ("" when the marker is missing: the test then fails on it).
+std::string box_step_with(const std::string& marker, char end, const std::string& with) {
+  std::string text = exported_box();
+  const std::size_t at = text.find(marker);
+  EXPECT_NE(at, std::string::npos) << marker;
+  if (at == std::string::npos) return "";
+  const std::size_t from = at + marker.size();
+  return text.replace(from, text.find(end, from) - from, with);
 }
 
 TEST(BadFiles, Missing) {
@@ -96,17 +114,12 @@ TEST(BadFiles, StepWithoutAShape) {
 // OpenCASCADE drops an entity whose reference does not resolve: here a face of the box's
 // shell would vanish and leave a hole. Refused instead, naming both entities.
 TEST(BadFiles, StepWithADanglingReference) {
-  std::string path = test::temp_path("box.step");
-  std::string err;
-  ASSERT_TRUE(io::export_cad(build::box(), path, CadFormat::step, &err)) << err;
-  std::string text = slurp(path);
-  const std::size_t shell = text.find("CLOSED_SHELL('',(#");
-  ASSERT_NE(shell, std::string::npos);
-  const std::size_t ref = shell + std::string("CLOSED_SHELL('',(#").size();
-  text.replace(ref, text.find(',', ref) - ref, "99999");
+  const std::string text = box_step_with("CLOSED_SHELL('',(#", ',', "99999");
+  ASSERT_FALSE(text.empty());
   expect_refused(test::temp_file("dangling.step", text), CadFormat::step, "refers to #99999, which the file does not define");
   // A reference inside a string or a comment is not one.
-  std::string quoted = slurp(path);
+  std::string err;
+  std::string quoted = exported_box();
   quoted.insert(quoted.find("DATA;") + 5, "\n/* #99999 */");
   quoted.replace(quoted.find("CLOSED_SHELL('"), 14, "CLOSED_SHELL('#99999");
   std::string ok = test::temp_file("quoted.step", quoted);
@@ -114,14 +127,9 @@ TEST(BadFiles, StepWithADanglingReference) {
 }
 
 TEST(BadFiles, StepWithOverflowingNumbers) {
-  std::string path = test::temp_path("box.step");
+  const std::string text = box_step_with("CARTESIAN_POINT('',(", ')', "1.E999,-1.E999,1.E400");
+  ASSERT_FALSE(text.empty());
   std::string err;
-  ASSERT_TRUE(io::export_cad(build::box(), path, CadFormat::step, &err)) << err;
-  std::string text = slurp(path);
-  const std::size_t p = text.find("CARTESIAN_POINT('',(");
-  ASSERT_NE(p, std::string::npos);
-  const std::size_t b = p + std::string("CARTESIAN_POINT('',(").size();
-  text.replace(b, text.find(')', b) - b, "1.E999,-1.E999,1.E400");
   std::string bad = test::temp_file("overflow.step", text);
   EXPECT_FALSE(io::import_cad(bad, CadFormat::step, &err));
   EXPECT_NE(err.find(bad), std::string::npos) << err;
