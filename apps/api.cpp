@@ -4,6 +4,10 @@
 #include "apps/tolerance_choice.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/suggest_tolerance.h"
+#ifdef KINTSUGI_HAVE_OCCT
+#include "io/occt/exchange.h"
+#endif
 
 #include <chrono>
 #include <cmath>
@@ -16,10 +20,13 @@ namespace {
 using clock = std::chrono::steady_clock;
 double seconds_since(clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); }
 
-cli::ToleranceChoice tolerance_for(const Model& m, std::optional<double> tol, std::string* note) {
+// `suggest`: without --tol or meta.tolerance, the tolerance the model suggests
+// (repair/suggest_tolerance.h) rather than the size default; detect and beautify ask for
+// it, check (which only needs the precision) does not.
+cli::ToleranceChoice tolerance_for(const Model& m, std::optional<double> tol, std::string* note, bool suggest = false) {
   if (tol && !(std::isfinite(*tol) && *tol > 0)) throw Error("--tol must be a positive number");
   std::string error;
-  auto choice = cli::choose_tolerance(m, tol, &error);
+  auto choice = cli::choose_tolerance(m, tol, &error, suggest);
   if (!choice) throw Error(error);
   if (note) {
     note->clear();
@@ -34,15 +41,30 @@ cli::ToleranceChoice tolerance_for(const Model& m, std::optional<double> tol, st
 
 nlohmann::json beautify_timed(Model& m, std::optional<double> tol, const BeautifyOptions& options, std::string* note,
                               cli::BeautifyTimes& times, BeautifyDetail* detail = nullptr) {
-  cli::ToleranceChoice choice = tolerance_for(m, tol, note);
+  cli::ToleranceChoice choice = tolerance_for(m, tol, note, /*suggest=*/true);
   kintsugi::BeautifyOptions o;
   o.check_topology_each_repair = options.check_topology_each_repair;
   if (detail) detail->before = m.body.clone();
   auto t = clock::now();
-  BeautifyReport r = kintsugi::beautify(m.body, choice.tol, o);
+  BeautifyReport r;
+  if (choice.trusted) {
+#ifdef KINTSUGI_HAVE_OCCT
+    // The validity gate also asks OpenCASCADE about every repaired region: the model must
+    // still convert, and BRepCheck must pass where it passed on the input.
+    io::register_occt_region_check(io::occt_check(m.body).valid);
+#endif
+    r = kintsugi::beautify(m.body, choice.tol, o);
+    m.meta["tolerance"] = choice.tol.length;
+    m.meta.erase("defects");  // the injector's record no longer describes the model
+  } else {
+    // No tolerance to trust: nothing destructive; the model is written as it was read.
+    r.counts_before = r.counts_after = m.body.counts();
+    if (note)
+      *note += (note->empty() ? "" : "; ") +
+               std::string("no repair made: without a tolerance the model's features do not separate into spurious and "
+                           "intended ones (give --tol)");
+  }
   times.beautify = seconds_since(t);
-  m.meta["tolerance"] = choice.tol.length;
-  m.meta.erase("defects");  // the injector's record no longer describes the model
   // Recorded now; beautify_file fills in the write time after writing.
   nlohmann::json j = cli::beautify_json(r, choice, m.units, times);
   if (detail) {
@@ -80,9 +102,11 @@ nlohmann::json check(const Model& model, std::optional<double> tol, bool with_oc
   return cli::check_json(cli::check_body(model.body, choice.tol, with_occt), choice);
 }
 
-nlohmann::json detect(const Model& model, std::optional<double> tol, std::string* tolerance_note) {
-  cli::ToleranceChoice choice = tolerance_for(model, tol, tolerance_note);
-  return cli::detect_json(kintsugi::detect(model.body, choice.tol), choice, model.units);
+nlohmann::json detect(const Model& model, std::optional<double> tol, std::string* tolerance_note, bool with_suggestion) {
+  cli::ToleranceChoice choice = tolerance_for(model, tol, tolerance_note, /*suggest=*/true);
+  nlohmann::json j = cli::detect_json(kintsugi::detect(model.body, choice.tol), choice, model.units);
+  if (with_suggestion) j["suggested_tolerance"] = cli::suggestion_json(suggest_tolerance(model.body));
+  return j;
 }
 
 nlohmann::json beautify(Model& model, std::optional<double> tol, const BeautifyOptions& options,

@@ -31,12 +31,15 @@ Model read_model(const std::string& path);
 // Atomic; never over `input` (the file the model came from, if any).
 void write_model(const Model& model, const std::string& path, const std::string& input = "");
 
-// `tol`: the length tolerance; without it the model's meta.tolerance, else 1e-3 x the
-// model size (the CLI's rule). `tolerance_note`, when given, is set to what the CLI says
-// on stderr about where the tolerance came from ("" when `tol` was given).
+// `tol`: the length tolerance; without it the model's meta.tolerance, else (detect and
+// beautify) the tolerance the model suggests (repair/suggest_tolerance.h), else 1e-3 x the
+// model size (check: directly). `tolerance_note`, when given, is set to what the CLI says
+// on stderr about where the tolerance came from ("" when `tol` was given). When the model
+// suggests no tolerance, beautify repairs nothing and says so in the note.
 nlohmann::json check(const Model& model, std::optional<double> tol = std::nullopt, bool with_occt = false);
+// `with_suggestion`: the document also holds "suggested_tolerance" (detect --suggest-tol).
 nlohmann::json detect(const Model& model, std::optional<double> tol = std::nullopt,
-                      std::string* tolerance_note = nullptr);
+                      std::string* tolerance_note = nullptr, bool with_suggestion = false);
 
 struct BeautifyOptions {
   // The full topology check after every repair (on by default, as in the CLI); off

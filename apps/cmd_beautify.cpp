@@ -31,7 +31,9 @@ const std::string kHelp =
     pass_list() +
     "A repair that cannot complete is rolled back and reported with its reason. OUT is\n"
     "written atomically, never over IN.\n\n"
-    "  --tol T          the length tolerance (else meta.tolerance, else 1e-3 x model size);\n"
+    "  --tol T          the length tolerance (else meta.tolerance, else the tolerance the\n"
+    "                   model suggests, as kintsugi detect --suggest-tol reports it; when it\n"
+    "                   suggests none, nothing is repaired and OUT is IN unchanged);\n"
     "                   refused (exit 2) at or above the model size, or below 1e-6 of it\n"
     "  -o OUT           the repaired model\n"
     "  --report R.json  {\"tolerance\", \"problems\": [{\"type\", \"elements\", \"action\",\n"

@@ -9,14 +9,19 @@ namespace kintsugi::cli {
 
 namespace {
 const char* kHelp =
-    "usage: kintsugi detect FILE [--tol T] [--json]\n\n"
+    "usage: kintsugi detect FILE [--tol T] [--json] [--suggest-tol]\n\n"
     "Finds every topological problem of the paper's eleven types with one length\n"
     "tolerance T (spec/problems.md): face_gap, edge_gap, multi_face_gap, pinched_face,\n"
     "small_face_chain, sliver_face, short_edge_chain, same_geometry_faces, small_face,\n"
     "mergeable_edges, short_edge. Read-only.\n\n"
     "  --tol T  the length tolerance, in the file's units; without it, the file's\n"
-    "           meta.tolerance is used, else 1e-3 x the model size (said on stderr);\n"
-    "           refused (exit 2) at or above the model size, or below 1e-6 of it\n"
+    "           meta.tolerance is used, else the tolerance the model suggests (see\n"
+    "           --suggest-tol), else 1e-3 x the model size (said on stderr); refused\n"
+    "           (exit 2) at or above the model size, or below 1e-6 of it\n"
+    "  --suggest-tol  report the tolerance the model suggests: the widest gap between\n"
+    "           the sizes of spurious and of intended features (edge and chain lengths,\n"
+    "           face widths, square roots of face areas, gap sizes), with the sizes either\n"
+    "           side and a confidence; then detect with it (unless --tol is given)\n"
     "  --json   one JSON document: {\"tolerance\", \"problems\": [{\"type\", \"elements\",\n"
     "           \"measure\", \"subcase\"}], \"counts\": {every type: n}}\n\n"
     "Exit: 0 whether or not problems were found; 2 unreadable input or bad usage.\n";
@@ -25,7 +30,7 @@ const char* kHelp =
 int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args;
   std::string error;
-  if (!args.parse(argv, {"--tol"}, {"--json", "--help"}, &error)) {
+  if (!args.parse(argv, {"--tol"}, {"--json", "--help", "--suggest-tol"}, &error)) {
     err << "kintsugi detect: " << error << "\n" << kHelp;
     return kExitBadInput;
   }
@@ -45,7 +50,8 @@ int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ost
   std::string note;
   nlohmann::json j;
   try {
-    j = api::detect(api::read_model(args.positional()[0]), args.has("--tol") ? given : std::nullopt, &note);
+    j = api::detect(api::read_model(args.positional()[0]), args.has("--tol") ? given : std::nullopt, &note,
+                    args.has("--suggest-tol"));
   } catch (const api::Error& e) {
     err << "kintsugi detect: " << e.what() << "\n";
     return kExitBadInput;
@@ -54,6 +60,18 @@ int cmd_detect(const std::vector<std::string>& argv, std::ostream& out, std::ost
   if (args.has("--json")) {
     out << j.dump(2) << "\n";
     return kExitOk;
+  }
+  if (j.contains("suggested_tolerance")) {
+    const auto& s = j["suggested_tolerance"];
+    out << "suggested tolerance: ";
+    if (s["tolerance"].is_null())
+      out << "none (no clear gap)\n";
+    else
+      out << s["tolerance"].get<double>() << " " << j["units"].get<std::string>() << " (confidence "
+          << s["confidence"].get<std::string>() << ")\n";
+    out << "  " << s["explanation"].get<std::string>() << "\n";
+    for (const auto& e : s["spurious"]) out << "  spurious  " << e["size"].get<double>() << "  " << e["what"].get<std::string>() << "\n";
+    for (const auto& e : s["intended"]) out << "  intended  " << e["size"].get<double>() << "  " << e["what"].get<std::string>() << "\n";
   }
   out << "tolerance " << j["tolerance"].get<double>() << " " << j["units"].get<std::string>() << ": "
       << j["problems"].size() << " problem(s)\n";

@@ -3,6 +3,9 @@
 // in-process; apps/main.cpp only passes argv on.
 #include "apps/commands.h"
 #include "repair/pass.h"
+#ifdef KINTSUGI_HAVE_OCCT
+#include "geometry/occt/freeform_occt.h"
+#endif
 
 #include <exception>
 #include <iostream>
@@ -45,6 +48,12 @@ void usage(std::ostream& os) {
 }  // namespace
 
 int run_kintsugi(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+#ifdef KINTSUGI_HAVE_OCCT
+  // Free-form faces are evaluated by OpenCASCADE (geometry/freeform.h); registered here,
+  // not in main, so that the in-process users of the command line (fuzz/cli_args.cpp)
+  // read the same models the program does.
+  kintsugi::geo::occt::register_freeform_backend();
+#endif
   if (args.empty()) {
     usage(err);
     return kExitBadInput;

@@ -24,17 +24,26 @@ std::optional<std::string> format_of(const std::string& path, std::string* error
   if (e == ".json") return "json";
   if (e == ".step" || e == ".stp") return "step";
   if (e == ".brep") return "brep";
-  *error = path + ": unknown file type '" + e + "' (use .json, .step, .stp or .brep)";
+  if (e == ".iges" || e == ".igs") return "iges";
+  *error = path + ": unknown file type '" + e + "' (use .json, .step, .stp, .iges, .igs or .brep)";
   return std::nullopt;
 }
+
+#ifdef KINTSUGI_HAVE_OCCT
+io::CadFormat cad_format(const std::string& fmt) {
+  if (fmt == "step") return io::CadFormat::step;
+  if (fmt == "iges") return io::CadFormat::iges;
+  return io::CadFormat::brep;
+}
+#endif
 
 }  // namespace
 
 std::string formats_supported() {
 #ifdef KINTSUGI_HAVE_OCCT
-  return ".json (native), .step/.stp (STEP), .brep (OpenCASCADE)";
+  return ".json (native), .step/.stp (STEP), .iges/.igs (IGES), .brep (OpenCASCADE)";
 #else
-  return ".json (native); this build has no OpenCASCADE, so .step/.stp/.brep are refused";
+  return ".json (native); this build has no OpenCASCADE, so .step/.stp/.iges/.igs/.brep are refused";
 #endif
 }
 
@@ -48,7 +57,7 @@ std::optional<Model> load_model(const std::string& path, std::string* error) {
     return m;
   }
 #ifdef KINTSUGI_HAVE_OCCT
-  auto imp = import_cad_bounded(path, *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error);
+  auto imp = import_cad_bounded(path, cad_format(*fmt), error);
   if (!imp) return std::nullopt;
   Model m;
   m.body = std::move(imp->body);
@@ -74,7 +83,7 @@ bool save_model(const Model& m, const std::string& path, const std::string& inpu
   // Export to a temporary file beside the target, then rename: never a partial output.
   std::filesystem::path target(path);
   std::filesystem::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + target.extension().string());
-  if (!io::export_cad(m.body, tmp.string(), *fmt == "step" ? io::CadFormat::step : io::CadFormat::brep, error, m.units)) {
+  if (!io::export_cad(m.body, tmp.string(), cad_format(*fmt), error, m.units)) {
     std::filesystem::remove(tmp, ec);
     return false;
   }

@@ -1,5 +1,6 @@
 #include "apps/report_json.h"
 
+#include "invariants/region_validity.h"
 #include "invariants/topology_check.h"
 #ifdef KINTSUGI_HAVE_OCCT
 #include "io/occt/exchange.h"
@@ -35,6 +36,11 @@ CheckOutcome check_body(const Body& b, const geo::Tolerances& tol, [[maybe_unuse
   if (c.violations.empty()) {
     c.geometry = check_geometry(b, tol.precision);
     c.violations.insert(c.violations.end(), c.geometry.violations.begin(), c.geometry.violations.end());
+    // Loops in each face's parameter domain: crossing themselves or each other, turning
+    // the wrong way (what OpenCASCADE's checker calls self-intersecting wires and bad
+    // orientation).
+    std::vector<Violation> loops = loop_violations(b, whole_body(b).faces, tol);
+    c.violations.insert(c.violations.end(), loops.begin(), loops.end());
   }
   c.valid = c.violations.empty();
 #ifdef KINTSUGI_HAVE_OCCT
@@ -64,6 +70,7 @@ nlohmann::json check_json(const CheckOutcome& c, const ToleranceChoice& tol) {
 nlohmann::json detect_json(const Detection& d, const ToleranceChoice& tol, const std::string& units) {
   nlohmann::json j;
   j["tolerance"] = tol.tol.length;
+  j["tolerance_source"] = tol.source;
   j["units"] = units;
   j["problems"] = nlohmann::json::array();
   for (const Problem& p : d.problems)
@@ -75,6 +82,23 @@ nlohmann::json detect_json(const Detection& d, const ToleranceChoice& tol, const
   j["counts"] = nlohmann::json::object();
   for (ProblemType t : kAllProblemTypes) j["counts"][problem_name(t)] = d.count(t);
   return j;
+}
+
+nlohmann::json suggestion_json(const ToleranceSuggestion& s) {
+  auto evidence = [](const std::vector<SizeEvidence>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const SizeEvidence& e : v) a.push_back({{"what", e.what}, {"size", e.size}});
+    return a;
+  };
+  return {{"tolerance", s.usable() ? nlohmann::json(s.tolerance) : nlohmann::json(nullptr)},
+          {"confidence", s.confidence},
+          {"largest_spurious", s.below},
+          {"smallest_intended", s.above},
+          {"gap_ratio", s.ratio},
+          {"next_gap_ratio", s.next_ratio},
+          {"spurious", evidence(s.spurious)},
+          {"intended", evidence(s.intentional)},
+          {"explanation", s.explanation}};
 }
 
 nlohmann::json beautify_json(const BeautifyReport& r, const ToleranceChoice& tol, const std::string& units,

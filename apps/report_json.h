@@ -9,6 +9,7 @@
 #include "kernel/body.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/suggest_tolerance.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,6 +37,11 @@ CheckOutcome check_body(const Body& b, const geo::Tolerances& tol, bool with_occ
 nlohmann::json check_json(const CheckOutcome& c, const ToleranceChoice& tol);
 
 nlohmann::json detect_json(const Detection& d, const ToleranceChoice& tol, const std::string& units);
+
+// detect --suggest-tol's "suggested_tolerance": {"tolerance" (null when none), "confidence",
+// "largest_spurious", "smallest_intended", "gap_ratio", "next_gap_ratio", "spurious",
+// "intended" ([{"what", "size"}]), "explanation"}.
+nlohmann::json suggestion_json(const ToleranceSuggestion& s);
 
 // Wall-clock seconds of a beautify run's steps; read and write are 0 when the model did
 // not come from or go to a file in that run.

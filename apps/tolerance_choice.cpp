@@ -1,6 +1,7 @@
 #include "apps/tolerance_choice.h"
 
 #include "invariants/element_geometry.h"
+#include "repair/suggest_tolerance.h"
 
 #include <cmath>
 #include <sstream>
@@ -38,7 +39,8 @@ std::optional<ToleranceChoice> within_bounds(ToleranceChoice c, double size, con
 
 }  // namespace
 
-std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<double> given, std::string* error) {
+std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<double> given, std::string* error,
+                                                bool suggest) {
   double size = model_size(m.body);
   if (given) return within_bounds({geo::Tolerances::for_model(*given, size), "--tol"}, size, m.units, error);
   if (m.meta.is_object() && m.meta.contains("tolerance")) {
@@ -48,6 +50,15 @@ std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<do
       return std::nullopt;
     }
     return within_bounds({geo::Tolerances::for_model(t.get<double>(), size), "meta.tolerance"}, size, m.units, error);
+  }
+  if (suggest) {
+    ToleranceSuggestion s = suggest_tolerance(m.body);
+    if (s.usable())
+      return ToleranceChoice{geo::Tolerances::for_model(s.tolerance, size),
+                             "the model's own suggestion (confidence " + s.confidence + ": " + s.explanation + ")", true};
+    return ToleranceChoice{geo::Tolerances::default_for_model(size),
+                           "default (1e-3 x model size), not trusted: the model suggests no tolerance (" + s.explanation + ")",
+                           false};
   }
   return ToleranceChoice{geo::Tolerances::default_for_model(size), "default (1e-3 x model size)"};
 }

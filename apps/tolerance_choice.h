@@ -12,7 +12,10 @@ namespace kintsugi::cli {
 
 struct ToleranceChoice {
   geo::Tolerances tol;
-  std::string source;  // "--tol", "meta.tolerance", or "default (1e-3 x model size)"
+  std::string source;  // "--tol", "meta.tolerance", "suggested by the model (...)", or "default (1e-3 x model size)"
+  // False when the tolerance is only the size default because the model suggests none
+  // (no clear gap between spurious and intended features): nothing destructive may use it.
+  bool trusted = true;
 };
 
 // A tolerance must lie between these fractions of the model's size (model_size). At or
@@ -28,6 +31,9 @@ constexpr double kMaxToleranceRatio = 1.0;
 // Returns nullopt and sets *error when meta.tolerance is present but not a positive
 // number, or when the tolerance is outside the bounds above (the message names both the
 // tolerance and the model's size, and what to give instead).
-std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<double> given, std::string* error);
+// With `suggest`, a model without --tol or meta.tolerance gets the tolerance it suggests
+// (repair/suggest_tolerance.h); when it suggests none, the default, not trusted.
+std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<double> given, std::string* error,
+                                                bool suggest = false);
 
 }  // namespace kintsugi::cli

@@ -115,6 +115,13 @@ void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step)
   // only there to stop triangles fanning out, and a few do. (Spacing v like u made a long
   // thin fillet — a sliver — cost 40000 points, about a second per face.)
   if (!angular_v) hv = std::max(hv, (hi.y() - lo.y()) / 4);
+  // Free-form: no radius to scale by; a 16 x 16 grid over the region's parameter box
+  // keeps the triangles small where the area element varies.
+  if (is_freeform(s)) {
+    hu = (hi.x() - lo.x()) / 16;
+    hv = (hi.y() - lo.y()) / 16;
+    if (!(hu > 0) || !(hv > 0)) return;
+  }
   if (!(hv > 0)) return;
   const double cells = (hi.x() - lo.x()) / hu * (hi.y() - lo.y()) / hv;
   if (cells > 40000) {

@@ -1,6 +1,7 @@
 #include "geometry/curve.h"
 
 #include "geometry/frame.h"
+#include "geometry/freeform.h"
 #include "geometry/overload.h"
 #include "geometry/quadrature.h"
 
@@ -94,7 +95,11 @@ Vec3 evaluate(const Curve& c, double t) {
                                        return k.frame.origin + k.radius * radial(k.frame, t);
                                      },
                                      [&](const Ellipse& e) { return ellipse_at(e, t); },
-                                     [&](const Polyline& p) { return polyline_at(p, t); }},
+                                     [&](const Polyline& p) { return polyline_at(p, t); },
+                                     [&](const BSplineCurve&) {
+                                       Vec3 d;
+                                       return require_freeform().curve_d1(c, t, &d);
+                                     }},
                     c);
 }
 
@@ -117,6 +122,11 @@ Vec3 tangent(const Curve& c, double t) {
                           for (std::size_t j = i; j-- > 0;)
                             if ((p.points[j + 1] - p.points[j]).norm() > 0) return (p.points[j + 1] - p.points[j]).normalized();
                           return Vec3::UnitX();
+                        },
+                        [&](const BSplineCurve&) -> Vec3 {
+                          Vec3 d;
+                          require_freeform().curve_d1(c, t, &d);
+                          return d.norm() > 0 ? Vec3(d.normalized()) : Vec3::UnitX();
                         }},
                     c);
 }
@@ -153,6 +163,12 @@ CurvePoint closest_point(const Curve& c, const Vec3& p) {
                      if (d < best) best = d, out.point = x, out.t = s + w * std::sqrt(len2);
                      s += std::sqrt(len2);
                    }
+                 },
+                 [&](const BSplineCurve&) {
+                   const FreeformBackend& b = require_freeform();
+                   out.t = b.curve_project(c, p);
+                   Vec3 d;
+                   out.point = b.curve_d1(c, out.t, &d);
                  }},
              c);
   out.distance = (p - out.point).norm();
@@ -163,6 +179,7 @@ double parameter(const Curve& c, const Vec3& p) { return closest_point(c, p).t; 
 
 bool is_closed(const Curve& c) {
   if (std::holds_alternative<Circle>(c) || std::holds_alternative<Ellipse>(c)) return true;
+  if (const auto* b = std::get_if<BSplineCurve>(&c)) return b->periodic;
   if (const auto* p = std::get_if<Polyline>(&c))
     return p->points.size() > 2 && p->points.front() == p->points.back();
   return false;
@@ -170,11 +187,18 @@ bool is_closed(const Curve& c) {
 
 double period(const Curve& c) {
   if (std::holds_alternative<Circle>(c) || std::holds_alternative<Ellipse>(c)) return kTwoPi;
+  if (const auto* b = std::get_if<BSplineCurve>(&c))
+    return b->periodic && b->knots.size() >= 2 ? b->knots.back() - b->knots.front() : 0.0;
   if (is_closed(c)) return curve_length(c);
   return 0.0;
 }
 
 ParameterRange parameter_range(const Curve& c, const Vec3& p0, const Vec3& p1, double coincide_tol) {
+  // A B-spline that is closed without being periodic (an edge read from a file is its
+  // curve trimmed to the edge): a closed edge is the whole curve.
+  if (const auto* b = std::get_if<BSplineCurve>(&c); b && !b->periodic && !b->knots.empty() &&
+                                                       coincide_tol > 0 && (p0 - p1).norm() <= coincide_tol)
+    return ParameterRange{b->knots.front(), b->knots.back()};
   ParameterRange r{parameter(c, p0), parameter(c, p1)};
   const double per = period(c);
   if (per > 0) {
@@ -204,7 +228,8 @@ double arc_length(const Curve& c, double t0, double t1) {
                           // t is arc length; outside [0, L] the polyline does not continue.
                           const double len = cumulative(p).back();
                           return std::max(0.0, std::min(hi, len) - std::max(lo, 0.0));
-                        }},
+                        },
+                        [&](const BSplineCurve&) { return require_freeform().curve_length(c, lo, hi); }},
                     c);
 }
 
@@ -215,6 +240,11 @@ double curve_length(const Curve& c) {
                                      [&](const Ellipse&) { return arc_length(c, 0.0, kTwoPi); },
                                      [&](const Polyline& p) {
                                        return p.points.empty() ? 0.0 : cumulative(p).back();
+                                     },
+                                     [&](const BSplineCurve&) {
+                                       double t0, t1;
+                                       require_freeform().curve_bounds(c, &t0, &t1);
+                                       return require_freeform().curve_length(c, t0, t1);
                                      }},
                     c);
 }
@@ -235,6 +265,7 @@ std::vector<Vec3> sample_curve(const Curve& c, double t0, double t1, double chor
     out.push_back(evaluate(c, t1));
     return out;
   }
+  if (std::holds_alternative<BSplineCurve>(c)) return require_freeform().curve_sample(c, t0, t1, chordal_error);
   // Largest curvature, then the angle step whose sagitta stays within the error.
   double kappa_r = 0.0;  // radius of the tightest curvature
   double speed = 1.0;    // largest |C'(t)|

@@ -5,6 +5,7 @@
 #include "geometry/curve.h"
 #include "geometry/distance.h"
 #include "geometry/frame.h"
+#include "geometry/freeform.h"
 #include "geometry/intersect_detail.h"
 #include "geometry/surface.h"
 
@@ -183,6 +184,19 @@ SurfaceIntersection intersect_surfaces(const Surface& a, const Surface& b, const
       out.problem = p;
       return out;
     }
+  }
+  // Free-form: OpenCASCADE's surface intersection, through the backend.
+  if (is_freeform(a) || is_freeform(b)) {
+    SurfaceIntersection out;
+    const FreeformBackend* fb = freeform_backend();
+    if (!fb) {
+      out.kind = IntersectionKind::failed;
+      out.problem = freeform_unavailable();
+      return out;
+    }
+    out.curves = fb->intersect(a, b, o.precision);
+    out.kind = out.curves.empty() ? IntersectionKind::empty : IntersectionKind::curves;
+    return out;
   }
   const double ang = o.precision / reference_length(a, b, o);
   if (const auto* p = std::get_if<Plane>(&a)) {

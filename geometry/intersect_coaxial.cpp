@@ -38,7 +38,12 @@ Symmetry symmetry(const Surface& s) {
                              [](const Sphere& p) {
                                return Symmetry{Symmetry::any_through_point, p.frame.origin, p.frame.z};
                              },
-                             [](const auto& p) { return Symmetry{Symmetry::fixed, p.frame.origin, p.frame.z}; }},
+                             [](const auto& p) {
+                               if constexpr (requires { p.frame; })
+                                 return Symmetry{Symmetry::fixed, p.frame.origin, p.frame.z};
+                               else
+                                 return Symmetry{};  // free-form: no axis used here
+                             }},
                     s);
 }
 
@@ -113,7 +118,8 @@ Section section(const Surface& s, const Axis& axis) {
                         const double z0 = height(c.frame.origin);
                         out.circles.push_back({Vec2(c.major_radius, z0), c.minor_radius});
                         out.circles.push_back({Vec2(-c.major_radius, z0), c.minor_radius});
-                      }},
+                      },
+                      [](const auto&) {}},  // free-form: symmetry() gave no axis, never reached
              s);
   return out;
 }
@@ -188,7 +194,12 @@ std::optional<SurfaceIntersection> intersect_coaxial(const Surface& a, const Sur
   }
   // Reference direction for the circles' x axis: the first surface's frame x.
   const Vec3 hint = std::visit(Overload{[](const std::monostate&) { return Vec3(Vec3::UnitX()); },
-                                        [](const auto& s) { return Vec3(s.frame.x); }},
+                                        [](const auto& s) {
+                                          if constexpr (requires { s.frame; })
+                                            return Vec3(s.frame.x);
+                                          else
+                                            return Vec3(Vec3::UnitX());
+                                        }},
                                a);
   std::vector<Vec2> kept;
   for (const Vec2& p : pts) {

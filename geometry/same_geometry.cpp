@@ -73,8 +73,8 @@ struct Param {
     return std::visit(
         [&](const auto& s) -> Surface {
           using T = std::decay_t<decltype(s)>;
-          if constexpr (std::is_same_v<T, std::monostate>) {
-            return s;
+          if constexpr (std::is_same_v<T, std::monostate> || !requires { s.frame; }) {
+            return s;  // free-form surfaces are never refitted (fit_surface_like refuses them)
           } else {
             T out = s;
             out.frame.origin = s.frame.origin + shift;
@@ -180,6 +180,11 @@ SurfaceFit fit_surface_like(const Surface& model, const std::vector<Vec3>& point
   f.surface = model;
   if (const std::string p = surface_problem(model); !p.empty()) {
     f.problem = "model: " + p;
+    return f;
+  }
+  // Reshaping a free-form surface is not something kintsugi does (it keeps them exactly).
+  if (is_freeform(model)) {
+    f.problem = std::string("the ") + surface_type_name(model) + " would have to be reshaped, which kintsugi does not do to free-form surfaces";
     return f;
   }
   if (const auto* p = std::get_if<Plane>(&model)) return fit_plane(*p, points);

@@ -1,6 +1,7 @@
 #include "geometry/surface.h"
 
 #include "geometry/frame.h"
+#include "geometry/freeform.h"
 #include "geometry/overload.h"
 
 #include <cmath>
@@ -114,6 +115,37 @@ SurfacePoint closest_torus(const Torus& s, const Vec3& p) {
   return out;
 }
 
+// Free-form surfaces: through the backend (geometry/freeform.h).
+Vec3 ff_point(const Surface& s, const Vec2& uv, Vec3* du = nullptr, Vec3* dv = nullptr) {
+  Vec3 a, b;
+  Vec3 p = require_freeform().surface_d1(s, uv, du ? du : &a, dv ? dv : &b);
+  return p;
+}
+Vec3 ff_normal(const Surface& s, const Vec2& uv) {
+  Vec3 du, dv;
+  ff_point(s, uv, &du, &dv);
+  Vec3 n = du.cross(dv);
+  const double len = n.norm();
+  if (len > 0) return n / len;
+  // Degenerate point (a pole of the parametrisation): the normal a little inside.
+  double u0, u1, v0, v1;
+  require_freeform().surface_bounds(s, &u0, &u1, &v0, &v1);
+  const double hu = 1e-7 * (std::isfinite(u1 - u0) ? u1 - u0 : 1.0), hv = 1e-7 * (std::isfinite(v1 - v0) ? v1 - v0 : 1.0);
+  Vec2 q(uv.x() + (uv.x() + hu <= u1 ? hu : -hu), uv.y() + (uv.y() + hv <= v1 ? hv : -hv));
+  ff_point(s, q, &du, &dv);
+  n = du.cross(dv);
+  return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ();
+}
+SurfacePoint ff_closest(const Surface& s, const Vec3& p) {
+  SurfacePoint out;
+  out.uv = require_freeform().surface_project(s, p);
+  out.point = ff_point(s, out.uv);
+  out.normal = ff_normal(s, out.uv);
+  const Vec3 d = p - out.point;
+  out.distance = d.dot(out.normal) >= 0 ? d.norm() : -d.norm();
+  return out;
+}
+
 }  // namespace
 
 Vec3 apex(const Cone& c) { return c.frame.origin + apex_parameter(c) * std::cos(c.half_angle) * c.frame.z; }
@@ -139,7 +171,8 @@ Vec3 evaluate(const Surface& s, const Vec2& uv) {
           [&](const Torus& c) -> Vec3 {
             return c.frame.origin + (c.major_radius + c.minor_radius * std::cos(v)) * radial(c.frame, u) +
                    c.minor_radius * std::sin(v) * c.frame.z;
-          }},
+          },
+          [&](const auto&) -> Vec3 { return ff_point(s, uv); }},
       s);
 }
 
@@ -163,7 +196,8 @@ Vec3 normal(const Surface& s, const Vec2& uv) {
             // Outward from the tube; for a spindle torus where R + r cosφ < 0 this is
             // still the tube's outward normal.
             return std::cos(v) * radial(c.frame, u) + std::sin(v) * c.frame.z;
-          }},
+          },
+          [&](const auto&) -> Vec3 { return ff_normal(s, uv); }},
       s);
 }
 
@@ -190,7 +224,8 @@ void derivatives(const Surface& s, const Vec2& uv, Vec3& du, Vec3& dv) {
                  [&](const Torus& c) {
                    du = (c.major_radius + c.minor_radius * std::cos(v)) * radial(c.frame, u + kPi / 2);
                    dv = c.minor_radius * (-std::sin(v) * radial(c.frame, u) + std::cos(v) * c.frame.z);
-                 }},
+                 },
+                 [&](const auto&) { ff_point(s, uv, &du, &dv); }},
              s);
 }
 
@@ -204,6 +239,11 @@ double area_element(const Surface& s, const Vec2& uv) {
                         [&](const Sphere& c) { return c.radius * c.radius * std::abs(std::cos(v)); },
                         [&](const Torus& c) {
                           return c.minor_radius * std::abs(c.major_radius + c.minor_radius * std::cos(v));
+                        },
+                        [&](const auto&) -> double {
+                          Vec3 du, dv;
+                          ff_point(s, uv, &du, &dv);
+                          return du.cross(dv).norm();
                         }},
                     s);
 }
@@ -214,16 +254,21 @@ SurfacePoint closest_point(const Surface& s, const Vec3& p) {
                                      [&](const Cylinder& x) { return closest_cylinder(x, p); },
                                      [&](const Cone& x) { return closest_cone(x, p); },
                                      [&](const Sphere& x) { return closest_sphere(x, p); },
-                                     [&](const Torus& x) { return closest_torus(x, p); }},
+                                     [&](const Torus& x) { return closest_torus(x, p); },
+                                     [&](const auto&) { return ff_closest(s, p); }},
                     s);
 }
 
 double signed_distance(const Surface& s, const Vec3& p) { return closest_point(s, p).distance; }
 Vec2 parameters(const Surface& s, const Vec3& p) { return closest_point(s, p).uv; }
 
+// A surface of revolution's u is its angle. B-spline periods are knot spans, not 2π:
+// B-spline surfaces count as not periodic here (a face across a periodic B-spline's seam
+// is measured in its unwrapped parameters by the backend's projection).
 bool periodic_u(const Surface& s) {
   return std::holds_alternative<Cylinder>(s) || std::holds_alternative<Cone>(s) ||
-         std::holds_alternative<Sphere>(s) || std::holds_alternative<Torus>(s);
+         std::holds_alternative<Sphere>(s) || std::holds_alternative<Torus>(s) ||
+         std::holds_alternative<RevolutionSurface>(s);
 }
 bool periodic_v(const Surface& s) { return std::holds_alternative<Torus>(s); }
 
@@ -233,7 +278,10 @@ double surface_scale(const Surface& s) {
                                      [](const Cylinder& c) { return std::abs(c.radius); },
                                      [](const Cone& c) { return std::abs(c.radius); },
                                      [](const Sphere& c) { return std::abs(c.radius); },
-                                     [](const Torus& c) { return c.major_radius + c.minor_radius; }},
+                                     [](const Torus& c) { return c.major_radius + c.minor_radius; },
+                                     // Free-form: no single radius; 0 like a plane (thresholds
+                                     // then scale with the tolerance).
+                                     [](const auto&) { return 0.0; }},
                     s);
 }
 
@@ -268,6 +316,12 @@ std::string surface_problem(const Surface& s) {
                      out << "torus minor radius must be positive, got " << c.minor_radius;
                    else if (!(c.major_radius >= 0))
                      out << "torus major radius must not be negative, got " << c.major_radius;
+                 },
+                 [&](const auto&) {
+                   if (const FreeformBackend* b = freeform_backend())
+                     out << b->surface_problem(s);
+                   else
+                     out << freeform_unavailable();
                  }},
              s);
   return out.str();

@@ -18,7 +18,11 @@ const char* surface_type_name(const Surface& s) {
                              [](const Cylinder&) { return "cylinder"; },
                              [](const Cone&) { return "cone"; },
                              [](const Sphere&) { return "sphere"; },
-                             [](const Torus&) { return "torus"; }},
+                             [](const Torus&) { return "torus"; },
+                             [](const BSplineSurface&) { return "bspline_surface"; },
+                             [](const RevolutionSurface&) { return "revolution_surface"; },
+                             [](const ExtrusionSurface&) { return "extrusion_surface"; },
+                             [](const OffsetSurface&) { return "offset_surface"; }},
                     s);
 }
 
@@ -27,8 +31,12 @@ const char* curve_type_name(const Curve& c) {
                              [](const Line&) { return "line"; },
                              [](const Circle&) { return "circle"; },
                              [](const Ellipse&) { return "ellipse"; },
-                             [](const Polyline&) { return "polyline"; }},
+                             [](const Polyline&) { return "polyline"; },
+                             [](const BSplineCurve&) { return "bspline_curve"; }},
                     c);
 }
+
+bool is_freeform(const Surface& s) { return s.index() >= std::variant_size_v<Surface> - 4; }
+bool is_freeform(const Curve& c) { return std::holds_alternative<BSplineCurve>(c); }
 
 }  // namespace kintsugi::geo

@@ -4,6 +4,7 @@
 #include "io/native_json.h"
 
 #include "invariants/assemble.h"
+#include "geometry/freeform.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -447,6 +448,134 @@ class DocumentReader final : public ElementSink {
     return true;
   }
 
+  // -- free-form geometry (spec/file-format.md, "Free-form geometry") --
+
+  bool count_field(const json& obj, const std::string& ptr, const char* key, int lo, int* out) {
+    const json* v = required(obj, ptr, key);
+    std::uint64_t n = 0;
+    if (!v || !integer(*v, at(ptr, key), 1u << 24, &n)) return false;
+    if (int(n) < lo) return fail(at(ptr, key), "must be at least " + std::to_string(lo) + ", found " + std::to_string(n));
+    *out = int(n);
+    return true;
+  }
+  bool flag_field(const json& obj, const std::string& ptr, const char* key, bool* out) {
+    const json* v = required(obj, ptr, key);
+    if (!v) return false;
+    if (!v->is_boolean()) return fail(at(ptr, key), "expected true or false, found " + describe_value(*v));
+    *out = v->get<bool>();
+    return true;
+  }
+  bool number_list(const json& obj, const std::string& ptr, const char* key, std::vector<double>* out) {
+    const json* v = required(obj, ptr, key);
+    if (!v) return false;
+    const std::string p = at(ptr, key);
+    if (!v->is_array()) return fail(p, "expected an array of numbers, found " + describe_value(*v));
+    out->resize(v->size());
+    for (std::size_t i = 0; i < v->size(); ++i)
+      if (!number((*v)[i], at(p, i), &(*out)[i])) return false;
+    return true;
+  }
+  bool integer_list(const json& obj, const std::string& ptr, const char* key, std::vector<int>* out) {
+    const json* v = required(obj, ptr, key);
+    if (!v) return false;
+    const std::string p = at(ptr, key);
+    if (!v->is_array()) return fail(p, "expected an array of integers, found " + describe_value(*v));
+    out->resize(v->size());
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      std::uint64_t n = 0;
+      if (!integer((*v)[i], at(p, i), 1u << 24, &n)) return false;
+      if (n == 0) return fail(at(p, i), "a multiplicity must be at least 1");
+      (*out)[i] = int(n);
+    }
+    return true;
+  }
+  bool point_list(const json& obj, const std::string& ptr, const char* key, std::vector<geo::Vec3>* out) {
+    const json* v = required(obj, ptr, key);
+    if (!v) return false;
+    const std::string p = at(ptr, key);
+    if (!v->is_array()) return fail(p, "expected an array of points, found " + describe_value(*v));
+    out->resize(v->size());
+    for (std::size_t i = 0; i < v->size(); ++i)
+      if (!vec3((*v)[i], at(p, i), &(*out)[i])) return false;
+    return true;
+  }
+  // Knots strictly increasing, multiplicities summing to what the degree and pole count
+  // need (open: poles + degree + 1; periodic: poles, the last knot's counted once).
+  bool knot_vector(const std::string& ptr, const char* knots_key, const std::vector<double>& knots,
+                   const std::vector<int>& mults, int degree, std::size_t poles, bool periodic) {
+    if (knots.size() < 2) return fail(at(ptr, knots_key), "expected at least 2 knots, found " + std::to_string(knots.size()));
+    if (mults.size() != knots.size())
+      return fail(ptr, std::string("the multiplicities do not match ") + knots_key + " (" + std::to_string(mults.size()) +
+                           " and " + std::to_string(knots.size()) + ")");
+    for (std::size_t i = 1; i < knots.size(); ++i)
+      if (!(knots[i] > knots[i - 1])) return fail(at(at(ptr, knots_key), i), "knots must be strictly increasing");
+    std::size_t sum = 0;
+    for (std::size_t i = 0; i < mults.size(); ++i)
+      if (!periodic || i + 1 < mults.size()) sum += std::size_t(mults[i]);
+    const std::size_t need = periodic ? poles : poles + std::size_t(degree) + 1;
+    if (sum != need)
+      return fail(ptr, std::string("the multiplicities of ") + knots_key + " sum to " + std::to_string(sum) + ", but degree " +
+                           std::to_string(degree) + " with " + std::to_string(poles) + " poles needs " + std::to_string(need));
+    return true;
+  }
+  bool weights_ok(const std::string& ptr, const std::vector<double>& w, std::size_t poles) {
+    if (w.empty()) return true;
+    if (w.size() != poles)
+      return fail(at(ptr, "weights"), "expected one weight per pole (" + std::to_string(poles) + "), found " + std::to_string(w.size()));
+    for (std::size_t i = 0; i < w.size(); ++i)
+      if (!(w[i] > 0)) return fail(at(at(ptr, "weights"), i), "weights must be positive");
+    return true;
+  }
+  bool freeform_available(const std::string& ptr) {
+    if (std::string why = geo::freeform_unavailable(); !why.empty()) return fail(ptr, why);
+    return true;
+  }
+  bool bspline_curve(const json& j, const std::string& ptr, geo::BSplineCurve* c) {
+    if (!object_with_keys(j, ptr, {"type", "degree", "poles", "weights", "knots", "multiplicities", "periodic"},
+                          "a bspline_curve"))
+      return false;
+    if (j.contains("type") && j["type"] != "bspline_curve") return fail(at(ptr, "type"), "expected \"bspline_curve\"");
+    if (!count_field(j, ptr, "degree", 1, &c->degree) || !point_list(j, ptr, "poles", &c->poles) ||
+        !number_list(j, ptr, "knots", &c->knots) || !integer_list(j, ptr, "multiplicities", &c->multiplicities) ||
+        !flag_field(j, ptr, "periodic", &c->periodic))
+      return false;
+    if (j.contains("weights") && !number_list(j, ptr, "weights", &c->weights)) return false;
+    if (c->poles.size() < 2) return fail(at(ptr, "poles"), "expected at least 2 poles");
+    return weights_ok(ptr, c->weights, c->poles.size()) &&
+           knot_vector(ptr, "knots", c->knots, c->multiplicities, c->degree, c->poles.size(), c->periodic);
+  }
+  bool bspline_surface(const json& j, const std::string& ptr, geo::BSplineSurface* b) {
+    if (!object_with_keys(j, ptr,
+                          {"type", "u_degree", "v_degree", "u_count", "v_count", "poles", "weights", "u_knots", "v_knots",
+                           "u_multiplicities", "v_multiplicities", "u_periodic", "v_periodic"},
+                          "a bspline_surface"))
+      return false;
+    if (j.contains("type") && j["type"] != "bspline_surface") return fail(at(ptr, "type"), "expected \"bspline_surface\"");
+    if (!count_field(j, ptr, "u_degree", 1, &b->u_degree) || !count_field(j, ptr, "v_degree", 1, &b->v_degree) ||
+        !count_field(j, ptr, "u_count", 2, &b->u_count) || !count_field(j, ptr, "v_count", 2, &b->v_count) ||
+        !point_list(j, ptr, "poles", &b->poles) || !number_list(j, ptr, "u_knots", &b->u_knots) ||
+        !number_list(j, ptr, "v_knots", &b->v_knots) || !integer_list(j, ptr, "u_multiplicities", &b->u_multiplicities) ||
+        !integer_list(j, ptr, "v_multiplicities", &b->v_multiplicities) ||
+        !flag_field(j, ptr, "u_periodic", &b->u_periodic) || !flag_field(j, ptr, "v_periodic", &b->v_periodic))
+      return false;
+    if (j.contains("weights") && !number_list(j, ptr, "weights", &b->weights)) return false;
+    const std::size_t n = std::size_t(b->u_count) * std::size_t(b->v_count);
+    if (b->poles.size() != n)
+      return fail(at(ptr, "poles"), "expected u_count x v_count = " + std::to_string(n) + " poles, found " + std::to_string(b->poles.size()));
+    return weights_ok(ptr, b->weights, n) &&
+           knot_vector(ptr, "u_knots", b->u_knots, b->u_multiplicities, b->u_degree, std::size_t(b->u_count), b->u_periodic) &&
+           knot_vector(ptr, "v_knots", b->v_knots, b->v_multiplicities, b->v_degree, std::size_t(b->v_count), b->v_periodic);
+  }
+  // The backend's own verdict on data that passed the structural checks.
+  bool freeform_valid(const std::string& ptr, const geo::Surface& s) {
+    std::string why = geo::require_freeform().surface_problem(s);
+    return why.empty() || fail(ptr, why);
+  }
+  bool freeform_valid(const std::string& ptr, const geo::Curve& c) {
+    std::string why = geo::require_freeform().curve_problem(c);
+    return why.empty() || fail(ptr, why);
+  }
+
   // -- geometry --
 
   bool surface(const json* j, const std::string& ptr, geo::Surface* out) {
@@ -497,9 +626,43 @@ class DocumentReader final : public ElementSink {
         return fail(at(ptr, "minor_radius"), "must be less than major_radius (" + number_text(s.major_radius) +
                                                  "), found " + number_text(s.minor_radius));
       *out = s;
+    } else if (type == "bspline_surface") {
+      geo::BSplineSurface b;
+      if (!freeform_available(ptr) || !bspline_surface(*j, ptr, &b)) return false;
+      *out = std::move(b);
+      return freeform_valid(ptr, *out);
+    } else if (type == "revolution_surface") {
+      geo::RevolutionSurface r;
+      const json *basis = nullptr, *o = nullptr, *a = nullptr;
+      if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "origin", "axis"}, what) ||
+          !(basis = required(*j, ptr, "basis")) || !bspline_curve(*basis, at(ptr, "basis"), &r.basis) ||
+          !(o = required(*j, ptr, "origin")) || !vec3(*o, at(ptr, "origin"), &r.origin) ||
+          !(a = required(*j, ptr, "axis")) || !unit_vec3(*a, at(ptr, "axis"), &r.axis))
+        return false;
+      *out = std::move(r);
+      return freeform_valid(ptr, *out);
+    } else if (type == "extrusion_surface") {
+      geo::ExtrusionSurface e;
+      const json *basis = nullptr, *d = nullptr;
+      if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "direction"}, what) ||
+          !(basis = required(*j, ptr, "basis")) || !bspline_curve(*basis, at(ptr, "basis"), &e.basis) ||
+          !(d = required(*j, ptr, "direction")) || !unit_vec3(*d, at(ptr, "direction"), &e.direction))
+        return false;
+      *out = std::move(e);
+      return freeform_valid(ptr, *out);
+    } else if (type == "offset_surface") {
+      geo::OffsetSurface o;
+      const json* basis = nullptr;
+      if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "distance"}, what) ||
+          !(basis = required(*j, ptr, "basis")) || !bspline_surface(*basis, at(ptr, "basis"), &o.basis) ||
+          !field(*j, ptr, "distance", &o.distance, &DocumentReader::number))
+        return false;
+      *out = std::move(o);
+      return freeform_valid(ptr, *out);
     } else {
       return fail(at(ptr, "type"), "unknown surface type \"" + type +
-                                       "\" (expected plane, cylinder, cone, sphere or torus; null for none)");
+                                       "\" (expected plane, cylinder, cone, sphere, torus, bspline_surface, "
+                                       "revolution_surface, extrusion_surface or offset_surface; null for none)");
     }
     return true;
   }
@@ -556,9 +719,14 @@ class DocumentReader final : public ElementSink {
       for (std::size_t i = 0; i < pts->size(); ++i)
         if (!vec3((*pts)[i], at(pp, i), &c.points[i])) return false;
       *out = std::move(c);
+    } else if (type == "bspline_curve") {
+      geo::BSplineCurve b;
+      if (!freeform_available(ptr) || !bspline_curve(*j, ptr, &b)) return false;
+      *out = std::move(b);
+      return freeform_valid(ptr, *out);
     } else {
-      return fail(at(ptr, "type"),
-                  "unknown curve type \"" + type + "\" (expected line, circle, ellipse or polyline; null for none)");
+      return fail(at(ptr, "type"), "unknown curve type \"" + type +
+                                       "\" (expected line, circle, ellipse, polyline or bspline_curve; null for none)");
     }
     return true;
   }

@@ -265,6 +265,81 @@ class Writer {
     number(d);
   }
 
+  void numbers(std::string_view key, const std::vector<double>& v) {
+    raw(", \"");
+    raw(key);
+    raw("\": [");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (i) raw(", ");
+      number(v[i]);
+    }
+    raw("]");
+  }
+  void integers(std::string_view key, const std::vector<int>& v) {
+    raw(", \"");
+    raw(key);
+    raw("\": [");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (i) raw(", ");
+      raw(std::to_string(v[i]));
+    }
+    raw("]");
+  }
+  void integer(std::string_view key, int v) {
+    raw(", \"");
+    raw(key);
+    raw("\": ");
+    raw(std::to_string(v));
+  }
+  void boolean(std::string_view key, bool v) {
+    raw(", \"");
+    raw(key);
+    raw(v ? "\": true" : "\": false");
+  }
+  void points(std::string_view key, const std::vector<geo::Vec3>& v) {
+    raw(", \"");
+    raw(key);
+    raw("\": [");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (i) raw(", ");
+      vec3(v[i]);
+    }
+    raw("]");
+  }
+  void vector_member(std::string_view key, const geo::Vec3& v) {
+    raw(", \"");
+    raw(key);
+    raw("\": ");
+    vec3(v);
+  }
+  // Free-form data (spec/file-format.md, "Free-form geometry"); weights only when rational.
+  void bspline_curve(const geo::BSplineCurve& c) {
+    raw("{\"type\": \"bspline_curve\"");
+    integer("degree", c.degree);
+    points("poles", c.poles);
+    if (!c.weights.empty()) numbers("weights", c.weights);
+    numbers("knots", c.knots);
+    integers("multiplicities", c.multiplicities);
+    boolean("periodic", c.periodic);
+    raw("}");
+  }
+  void bspline_surface(const geo::BSplineSurface& b) {
+    raw("{\"type\": \"bspline_surface\"");
+    integer("u_degree", b.u_degree);
+    integer("v_degree", b.v_degree);
+    integer("u_count", b.u_count);
+    integer("v_count", b.v_count);
+    points("poles", b.poles);
+    if (!b.weights.empty()) numbers("weights", b.weights);
+    numbers("u_knots", b.u_knots);
+    numbers("v_knots", b.v_knots);
+    integers("u_multiplicities", b.u_multiplicities);
+    integers("v_multiplicities", b.v_multiplicities);
+    boolean("u_periodic", b.u_periodic);
+    boolean("v_periodic", b.v_periodic);
+    raw("}");
+  }
+
   void surface(const geo::Surface& s) {
     std::visit(Overload{[&](const std::monostate&) { raw("null"); },
                         [&](const geo::Plane& p) {
@@ -296,6 +371,26 @@ class Writer {
                           frame(t.frame);
                           member("major_radius", t.major_radius);
                           member("minor_radius", t.minor_radius);
+                          raw("}");
+                        },
+                        [&](const geo::BSplineSurface& b) { bspline_surface(b); },
+                        [&](const geo::RevolutionSurface& r) {
+                          raw("{\"type\": \"revolution_surface\", \"basis\": ");
+                          bspline_curve(r.basis);
+                          vector_member("origin", r.origin);
+                          vector_member("axis", r.axis);
+                          raw("}");
+                        },
+                        [&](const geo::ExtrusionSurface& e) {
+                          raw("{\"type\": \"extrusion_surface\", \"basis\": ");
+                          bspline_curve(e.basis);
+                          vector_member("direction", e.direction);
+                          raw("}");
+                        },
+                        [&](const geo::OffsetSurface& o) {
+                          raw("{\"type\": \"offset_surface\", \"basis\": ");
+                          bspline_surface(o.basis);
+                          member("distance", o.distance);
                           raw("}");
                         }},
                s);
@@ -332,7 +427,8 @@ class Writer {
                           raw("]");
                           member("chordal_error", p.chordal_error);
                           raw("}");
-                        }},
+                        },
+                        [&](const geo::BSplineCurve& b) { bspline_curve(b); }},
                c);
   }
 

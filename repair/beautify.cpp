@@ -6,6 +6,7 @@
 #include "repair/beautify.h"
 
 #include "invariants/geometry_check.h"
+#include "invariants/region_validity.h"
 #include "invariants/topology_check.h"
 #include "kernel/transaction.h"
 #include "repair/beautify_detail.h"
@@ -13,6 +14,7 @@
 #include "repair/pass.h"
 #include "repair/region_solve.h"
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <map>
@@ -104,6 +106,17 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   }
   if (why.empty() && !solve_why.empty())
     note += (note.empty() ? "" : "; ") + std::string("consistent to the tolerance only: ") + solve_why;
+  // The validity gate: the touched region valid at modelling precision, never worse than
+  // the input (options.lies_on). A repair the solve could not bring to that precision is
+  // kept consistent to the tolerance (local_deviation above) and solved again later; its
+  // distances are gated at the tolerance, but its loops must still neither cross nor turn
+  // the wrong way, and it must still be writable.
+  if (why.empty()) {
+    double lies_on = options.lies_on > 0 ? options.lies_on : tol.precision;
+    if (!solve_why.empty()) lies_on = std::max(lies_on, tol.length);
+    std::string invalid = region_validity(b, {touched.vertices, touched.edges, touched.faces}, tol, lies_on);
+    if (!invalid.empty()) why = "the result would not be valid: " + invalid;
+  }
   if (why.empty() && options.check_topology_each_repair) {
     auto v = check_topology(b);
     if (!v.empty()) why = "check_topology: " + to_string(v.front());
@@ -271,11 +284,16 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
       if (p.type == t) mine.push_back(std::move(p));
   }
   std::vector<Problem> left;
-  run_queue(b, tol, pass, std::move(mine), report, options, left);
+  BeautifyOptions opt = options;
+  if (!(opt.lies_on > 0)) opt.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision).max_deviation);
+  run_queue(b, tol, pass, std::move(mine), report, opt, left);
 }
 
-BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options) {
+BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options_in) {
   using clock = std::chrono::steady_clock;
+  // What the input already had off its curves and surfaces: repairs must not make it worse.
+  BeautifyOptions options = options_in;
+  if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision).max_deviation);
   BeautifyReport r;
   r.counts_before = b.counts();
   auto t0 = clock::now();

@@ -84,6 +84,9 @@ struct BeautifyOptions {
   // change the body further (through operators) and what was touched. The audit's tests
   // use it to break a pass on purpose and see the audit catch it.
   std::function<void(Body&, ProblemType, Touched&)> after_repair;
+  // The validity gate's "lies on" limit (invariants/region_validity.h); 0: beautify() and
+  // run_pass() set it to max(precision, the input's largest deviation).
+  double lies_on = 0.0;
 };
 
 // The whole pipeline, passes 1..11.

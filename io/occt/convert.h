@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,8 @@ struct BuiltShape {
 // Builds the shape with one shared TopoDS_Edge per edge and one TopoDS_Vertex per
 // vertex, so OpenCASCADE sees exactly our topology. Refuses (nullopt, *error) a body
 // with a face or edge without geometry, or geometry OpenCASCADE rejects.
-std::optional<BuiltShape> to_shape(const Body& b, std::string* error);
+// With `only`, just those faces and their edges, as a compound of faces (no shells).
+std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only = nullptr);
 
 // Names a face for messages ("face #12 (STEP entity #345)"); given the face's 1-based
 // index in the shape's face map.
@@ -39,5 +41,9 @@ using FaceLocator = std::function<std::string(const TopoDS_Shape& face, int inde
 // refused with *error listing every offending face.
 std::optional<Body> from_shape(const TopoDS_Shape& s, const FaceLocator& locate, std::vector<std::string>* warnings,
                                std::string* error);
+
+// Sews a shape of unconnected faces (IGES trimmed surfaces) into shells, with
+// `tolerance` (the file's resolution); a shape that already has shells is returned as is.
+TopoDS_Shape sew_faces(const TopoDS_Shape& shape, double tolerance, std::vector<std::string>* warnings);
 
 }  // namespace kintsugi::io::occt

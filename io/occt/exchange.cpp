@@ -4,6 +4,8 @@
 
 #include "io/occt/convert.h"
 #include "io/occt/step_references.h"
+#include "geometry/occt/freeform_occt.h"
+#include "invariants/region_validity.h"
 
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -12,6 +14,11 @@
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -258,6 +265,100 @@ std::optional<CadImport> import_brep(const std::string& path, std::string* error
   return out;
 }
 
+// IGES global-section unit flags (IGES 5.3, section 2.2.4.3, parameter 14).
+const LengthUnit* iges_unit(int flag) {
+  switch (flag) {
+    case 1: return unit_by_short_name("in");
+    case 2: return unit_by_short_name("mm");
+    case 4: return unit_by_short_name("ft");
+    case 5: return unit_by_short_name("mi");
+    case 6: return unit_by_short_name("m");
+    case 7: return unit_by_short_name("km");
+    case 8: return unit_by_short_name("mil");
+    case 9: return unit_by_short_name("um");
+    case 10: return unit_by_short_name("cm");
+    case 11: return unit_by_short_name("uin");
+    default: return nullptr;
+  }
+}
+
+int iges_flag(const LengthUnit& u) {
+  for (int f = 1; f <= 11; ++f)
+    if (iges_unit(f) == &u) return f;
+  return 2;
+}
+
+std::optional<CadImport> import_iges(const std::string& path, std::string* error) {
+  std::string head, tail;
+  if (!check_file(path, &head, &tail, error)) return std::nullopt;
+  // Fixed 80-column records; column 73 of the first line is the section letter S (or G
+  // for a file without a start section).
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
+  while (!first.empty() && (first.back() == '\r' || first.back() == '\n')) first.pop_back();
+  if (first.size() < 73 || (first[72] != 'S' && first[72] != 'G'))
+    return fail(error, path + ": not an IGES file (no start or global section in columns 73-80)"), std::nullopt;
+  if (tail.size() < 8 || tail.find('T', tail.size() > 8 ? tail.size() - 8 : 0) == std::string::npos)
+    return fail(error, path + ": the IGES file is truncated (no terminate section at its end)"), std::nullopt;
+
+  std::lock_guard<std::mutex> lock(step_mutex());  // IGES settings are process-wide statics too
+  IGESControl_Controller::Init();
+  IGESControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    return fail(error, path + ": the IGES file cannot be parsed (it is corrupt or not IGES)"), std::nullopt;
+  CadImport out;
+  const LengthUnit* unit = nullptr;
+  Handle(IGESData_IGESModel) model = reader.IGESModel();
+  if (!model.IsNull()) unit = iges_unit(model->GlobalSection().UnitFlag());
+  if (!unit) {
+    out.warnings.push_back("the IGES file's length unit is not recognised: millimetres assumed");
+    unit = unit_by_short_name("mm");
+  }
+  // Transfer without scaling: the target unit is the file's.
+  Interface_Static::SetCVal("xstep.cascade.unit", unit->step_name);
+  out.units = unit->short_name;
+  out.unit_in_mm = unit->mm;
+  reader.SetReadVisible(Standard_True);
+  int roots = reader.NbRootsForTransfer();
+  if (roots == 0) return fail(error, path + ": the IGES file holds no shape (no transferable entity)"), std::nullopt;
+  reader.TransferRoots();
+  TopoDS_Shape shape = reader.OneShape();
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  if (shape.IsNull())
+    return fail(error, path + ": the IGES file holds no shape (" + std::to_string(roots) + " root entities, none gave a shape)"),
+           std::nullopt;
+  // IGES trimmed surfaces come as separate faces: sew them into shells first (the
+  // tolerance is the file's resolution, at least 1e-6 of the file's unit).
+  double resolution = model.IsNull() ? 1e-6 : std::max(1e-6, model->GlobalSection().Resolution());
+  shape = occt::sew_faces(shape, resolution, &out.warnings);
+  occt::FaceLocator locate = [](const TopoDS_Shape&, int index) { return "face #" + std::to_string(index); };
+  std::string why;
+  std::optional<Body> body = occt::from_shape(shape, locate, &out.warnings, &why);
+  if (!body) return fail(error, path + ": " + why), std::nullopt;
+  out.body = std::move(*body);
+  return out;
+}
+
+bool write_iges(const TopoDS_Shape& shape, const std::string& path, const std::string& units, std::string* error) {
+  const LengthUnit* unit = unit_by_short_name(units);
+  if (!unit) return fail(error, "unknown length unit '" + units + "' (mm, cm, m, km, um, in, ft, mi, mil, uin)");
+  std::lock_guard<std::mutex> lock(step_mutex());
+  IGESControl_Controller::Init();
+  // BRep mode (faces, shells and solids as MSBO entities 186/514/510): the topology is
+  // written as it is, not as unconnected trimmed surfaces.
+  Interface_Static::SetIVal("write.iges.brep.mode", 1);
+  Interface_Static::SetCVal("xstep.cascade.unit", unit->step_name);
+  IGESControl_Writer writer(unit->step_name, 1);
+  writer.Model()->ChangeGlobalSection().SetUnitFlag(iges_flag(*unit));
+  bool added = writer.AddShape(shape);
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  if (!added) return fail(error, path + ": OpenCASCADE could not translate the shape to IGES");
+  writer.ComputeModel();
+  if (!writer.Write(path.c_str())) return fail(error, path + ": cannot write the IGES file");
+  return true;
+}
+
 bool write_step(const TopoDS_Shape& shape, const std::string& path, const std::string& units, std::string* error) {
   const LengthUnit* unit = unit_by_short_name(units);
   if (!unit) return fail(error, "unknown length unit '" + units + "' (mm, cm, m, km, um, in, ft, mi, mil, uin)");
@@ -286,8 +387,14 @@ std::string status_name(BRepCheck_Status s) {
 
 std::optional<CadImport> import_cad(const std::string& path, CadFormat f, std::string* error) {
   silence_occt();
+  geo::occt::register_freeform_backend();
   try {
-    return f == CadFormat::step ? import_step(path, error) : import_brep(path, error);
+    switch (f) {
+      case CadFormat::step: return import_step(path, error);
+      case CadFormat::iges: return import_iges(path, error);
+      case CadFormat::brep: return import_brep(path, error);
+    }
+    return fail(error, path + ": unknown format"), std::nullopt;
   } catch (const Standard_Failure& e) {
     fail(error, path + ": OpenCASCADE failed while reading: " + e.GetMessageString());
   } catch (const std::exception& e) {
@@ -298,11 +405,13 @@ std::optional<CadImport> import_cad(const std::string& path, CadFormat f, std::s
 
 bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string* error, const std::string& units) {
   silence_occt();
+  geo::occt::register_freeform_backend();
   try {
     std::string why;
     std::optional<occt::BuiltShape> s = occt::to_shape(b, &why);
     if (!s) return fail(error, path + ": cannot convert the body: " + why);
     if (f == CadFormat::step) return write_step(s->shape, path, units, error);
+    if (f == CadFormat::iges) return write_iges(s->shape, path, units, error);
     if (!unit_by_short_name(units))
       return fail(error, "unknown length unit '" + units + "' (mm, cm, m, km, um, in, ft, mi, mil, uin)");
     if (!BRepTools::Write(s->shape, path.c_str())) return fail(error, path + ": cannot write the BREP file");
@@ -316,6 +425,7 @@ bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string
 
 OcctVerdict occt_check(const Body& b) {
   silence_occt();
+  geo::occt::register_freeform_backend();
   OcctVerdict v{false, {}};
   try {
     std::string why;
@@ -368,6 +478,44 @@ OcctVerdict occt_check(const Body& b) {
     v.problems.push_back(std::string("OpenCASCADE failed while checking: ") + e.GetMessageString());
   }
   return v;
+}
+
+namespace {
+
+bool g_brepcheck = true;
+
+std::string occt_region_check(const Body& b, const Region& r) {
+  silence_occt();
+  try {
+    std::string why;
+    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces);
+    if (!s) return "the model could not be written: " + why;
+    if (!g_brepcheck) return "";
+    for (FaceH f : r.faces) {
+      BRepCheck_Analyzer ana(s->face[f.idx()]);
+      if (ana.IsValid()) continue;
+      TopTools_IndexedMapOfShape all;
+      TopExp::MapShapes(s->face[f.idx()], all);
+      all.Add(s->face[f.idx()]);
+      for (int i = 1; i <= all.Extent(); ++i) {
+        Handle(BRepCheck_Result) res = ana.Result(all(i));
+        if (res.IsNull()) continue;
+        for (BRepCheck_ListIteratorOfListOfStatus it(res->Status()); it.More(); it.Next())
+          if (it.Value() != BRepCheck_NoError) return "OpenCASCADE's checker: " + f.str() + ": " + status_name(it.Value());
+      }
+      return "OpenCASCADE's checker: " + f.str() + " is not valid";
+    }
+  } catch (const Standard_Failure& e) {
+    return std::string("OpenCASCADE failed while checking the region: ") + e.GetMessageString();
+  }
+  return "";
+}
+
+}  // namespace
+
+void register_occt_region_check(bool brepcheck) {
+  g_brepcheck = brepcheck;
+  set_external_region_check(&occt_region_check);
 }
 
 }  // namespace kintsugi::io

@@ -1,4 +1,4 @@
-// STEP and OpenCASCADE BREP exchange, and OpenCASCADE's BRepCheck as an independent
+// STEP, IGES and OpenCASCADE BREP exchange, and OpenCASCADE's BRepCheck as an independent
 // validity judge (spec/exchange.md: what maps to what, orientation, units, what is
 // refused). Built only when OpenCASCADE is found (KINTSUGI_HAVE_OCCT).
 //
@@ -14,7 +14,7 @@
 
 namespace kintsugi::io {
 
-enum class CadFormat { step, brep };
+enum class CadFormat { step, brep, iges };
 
 struct CadImport {
   Body body;
@@ -45,5 +45,12 @@ struct OcctVerdict {
 // BRepCheck_Analyzer on it. A body that cannot be converted is not valid; the problems
 // then say why.
 OcctVerdict occt_check(const Body& b);
+
+// The validity gate's OpenCASCADE half (invariants/region_validity.h): registers a check
+// that the region's faces convert (the model can still be written) and, when
+// `brepcheck`, that BRepCheck_Analyzer finds nothing wrong with them. The CLI passes
+// brepcheck = false when the model read is itself not valid by BRepCheck (so that a
+// repair is not blamed for what was there before).
+void register_occt_region_check(bool brepcheck);
 
 }  // namespace kintsugi::io

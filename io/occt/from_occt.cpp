@@ -8,6 +8,7 @@
 // edges' far sides: they are linked into border cycles at the end.
 #include "io/occt/convert.h"
 
+#include "geometry/occt/freeform_occt.h"
 #include "geometry/surface.h"
 #include "geometry/types.h"
 #include "invariants/assemble.h"
@@ -120,6 +121,52 @@ const char* occt_surface_name(const Handle(Geom_Surface)& s) {
   return s->DynamicType()->Name();
 }
 
+// A free-form surface as ours, exactly: B-spline (Bezier ones converted, exactly),
+// revolution and extrusion with their basis curve as a B-spline (exact for conics; an
+// unbounded basis line is trimmed to the face first), offset of a B-spline.
+std::optional<geo::Surface> keep_freeform(const Handle(Geom_Surface)& s, const TopoDS_Face& face, std::string* why) {
+  namespace ff = geo::occt;
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  auto basis_curve = [&](Handle(Geom_Curve) c, double f, double l) -> std::optional<geo::BSplineCurve> {
+    if (Precision::IsInfinite(c->FirstParameter()) || Precision::IsInfinite(c->LastParameter())) {
+      const double m = 0.1 * (l - f) + 1.0;
+      c = new Geom_TrimmedCurve(c, f - m, l + m);
+    }
+    return ff::to_bspline(c, why);
+  };
+  try {
+    if (auto b = Handle(Geom_BSplineSurface)::DownCast(s)) return geo::Surface(ff::bspline_data(b));
+    if (s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) {
+      if (std::optional<geo::BSplineSurface> b = ff::to_bspline(s, why)) return geo::Surface(*b);
+      return std::nullopt;
+    }
+    if (auto r = Handle(Geom_SurfaceOfRevolution)::DownCast(s)) {
+      std::optional<geo::BSplineCurve> basis = basis_curve(r->BasisCurve(), v0, v1);
+      if (!basis) return std::nullopt;
+      const gp_Ax1 axis = r->Axis();
+      return geo::Surface(geo::RevolutionSurface{*basis, vec(axis.Location()), vec(axis.Direction()), nullptr});
+    }
+    if (auto e = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(s)) {
+      std::optional<geo::BSplineCurve> basis = basis_curve(e->BasisCurve(), u0, u1);
+      if (!basis) return std::nullopt;
+      return geo::Surface(geo::ExtrusionSurface{*basis, vec(e->Direction()), nullptr});
+    }
+    if (auto o = Handle(Geom_OffsetSurface)::DownCast(s)) {
+      Handle(Geom_Surface) basis = o->BasisSurface();
+      while (auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(basis)) basis = t->BasisSurface();
+      std::optional<geo::BSplineSurface> b = ff::to_bspline(basis, why);
+      if (!b) return std::nullopt;
+      return geo::Surface(geo::OffsetSurface{*b, o->Offset(), nullptr});
+    }
+  } catch (const Standard_Failure& e) {
+    *why = std::string("OpenCASCADE failed converting it: ") + e.GetMessageString();
+    return std::nullopt;
+  }
+  *why = std::string(s->DynamicType()->Name()) + " is not a free-form type kintsugi keeps";
+  return std::nullopt;
+}
+
 // The face's surface as ours, or the reason it cannot be (the surface type name, for
 // the per-type count, and a sentence).
 struct SurfaceResult {
@@ -169,7 +216,12 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   }
   if (!ana.IsNull()) r.analytic = elementary(ana);
   if (!r.analytic) {
-    r.why = std::string(r.type) + " not within precision (" + std::to_string(tol) + ") of an analytic surface";
+    // Kept exactly as free-form (our normal is OpenCASCADE's: ∂P/∂u × ∂P/∂v).
+    if (std::optional<geo::Surface> ff = keep_freeform(s, face, &r.why)) {
+      r.analytic = Analytic{std::move(*ff), true};
+      return r;
+    }
+    r.why = std::string(r.type) + " not within precision (" + std::to_string(tol) + ") of an analytic surface, and " + r.why;
     return r;
   }
   // The recognised surface's parametrisation is not the original's: compare the
@@ -336,7 +388,20 @@ geo::Curve edge_curve(const TopoDS_Edge& forward, const std::vector<TopoDS_Face>
       return *line;
     }
   }
-  // Anything else: a polyline within a chordal error proportional to the edge's size.
+  // Anything else: the curve itself, exactly, as a B-spline (the edge's part of it).
+  if (!c.IsNull()) {
+    std::string why;
+    Handle(Geom_Curve) part = c;
+    if (f > c->FirstParameter() || l < c->LastParameter() || c->IsPeriodic()) {
+      try {
+        part = new Geom_TrimmedCurve(c, f, l);
+      } catch (const Standard_Failure&) {
+        part = c;
+      }
+    }
+    if (std::optional<geo::BSplineCurve> b = geo::occt::to_bspline(part, &why)) return *b;
+  }
+  // Failing that, a polyline within a chordal error proportional to the edge's size.
   BRepAdaptor_Curve ad(forward);
   double len = ad.Value(ad.FirstParameter()).Distance(ad.Value(0.5 * (ad.FirstParameter() + ad.LastParameter()))) +
                ad.Value(ad.LastParameter()).Distance(ad.Value(0.5 * (ad.FirstParameter() + ad.LastParameter())));

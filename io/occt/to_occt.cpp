@@ -8,6 +8,7 @@
 #include "io/occt/convert.h"
 
 #include "geometry/curve.h"
+#include "geometry/occt/freeform_occt.h"
 #include "geometry/surface.h"
 #include "geometry/types.h"
 
@@ -52,6 +53,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace kintsugi::io::occt {
@@ -90,8 +92,15 @@ Handle(Geom_Surface) to_geom(const geo::Surface& s) {
     Handle(Geom_Surface) operator()(const geo::Torus& t) const {
       return new Geom_ToroidalSurface(ax3(t.frame), t.major_radius, t.minor_radius);
     }
+    // Free-form: the surface rebuilt from its data (a copy: each face owns its surface).
+    Handle(Geom_Surface) operator()(const geo::BSplineSurface&) const { return copy(); }
+    Handle(Geom_Surface) operator()(const geo::RevolutionSurface&) const { return copy(); }
+    Handle(Geom_Surface) operator()(const geo::ExtrusionSurface&) const { return copy(); }
+    Handle(Geom_Surface) operator()(const geo::OffsetSurface&) const { return copy(); }
+    Handle(Geom_Surface) copy() const { return Handle(Geom_Surface)::DownCast(geo::occt::geom_surface(all)->Copy()); }
+    const geo::Surface& all;
   };
-  return std::visit(V{}, s);
+  return std::visit(V{s}, s);
 }
 
 // A 3D curve and the parameter range [t0, t1] of the edge from p0 to p1 along it.
@@ -165,6 +174,23 @@ std::optional<EdgeCurve> to_geom(const geo::Curve& c, const Vec3& p0, const Vec3
     out.curve = new Geom_BSplineCurve(poles, knots, mults, 1);
     out.t0 = 0;
     out.t1 = s;
+  } else if (std::holds_alternative<geo::BSplineCurve>(c)) {
+    // The B-spline itself, between the vertices' parameters; written the edge's way.
+    Handle(Geom_Curve) bs = Handle(Geom_Curve)::DownCast(geo::occt::geom_curve(c)->Copy());
+    geo::ParameterRange r = geo::parameter_range(c, p0, p1, closed ? 1e-300 + (p0 - p1).norm() : 0.0);
+    out.t0 = r.t0;
+    out.t1 = r.t1;
+    if (closed && !bs->IsPeriodic()) {
+      out.t0 = bs->FirstParameter();
+      out.t1 = bs->LastParameter();
+    }
+    if (out.t1 < out.t0) {
+      out.t0 = bs->ReversedParameter(out.t0);
+      out.t1 = bs->ReversedParameter(out.t1);
+      bs = bs->Reversed();
+    }
+    if (!(out.t1 > out.t0)) return *why = "a B-spline edge whose ends coincide", std::nullopt;
+    out.curve = bs;
   } else {
     return *why = "no curve", std::nullopt;
   }
@@ -186,7 +212,7 @@ std::string status_of(BRepBuilderAPI_EdgeError e) {
 
 class Builder {
  public:
-  explicit Builder(const Body& b) : b_(b) {}
+  explicit Builder(const Body& b, const std::set<FaceH>* only = nullptr) : b_(b), only_(only) {}
 
   std::optional<BuiltShape> run(std::string* error) {
     out_.vertex.resize(b_.vertex_slots());
@@ -200,6 +226,7 @@ class Builder {
       bb_.MakeVertex(tv, pnt(b_.point(v)), kTol);
       out_.vertex[v.idx()] = tv;
     }
+    if (only_) return run_faces(error);
     for (EdgeH e : b_.edges())
       if (!make_edge(e, error)) return std::nullopt;
     for (FaceH f : b_.faces())
@@ -384,18 +411,39 @@ class Builder {
     BRepLib::UpdateTolerances(out_.shape, Standard_False);
   }
 
+  // Only the faces in only_ (and their edges), as a compound: what a repair's region
+  // check needs, at a cost that does not grow with the model.
+  std::optional<BuiltShape> run_faces(std::string* error) {
+    std::set<EdgeH> edges;
+    for (FaceH f : *only_)
+      for (LoopH l : b_.loops_of(f))
+        if (!b_.is_lone(l))
+          for (HalfedgeH h : b_.loop_halfedges(l)) edges.insert(edge_of(h));
+    for (EdgeH e : edges)
+      if (!make_edge(e, error)) return std::nullopt;
+    TopoDS_Compound c;
+    bb_.MakeCompound(c);
+    for (FaceH f : *only_) {
+      if (!make_face(f, error)) return std::nullopt;
+      bb_.Add(c, out_.face[f.idx()]);
+    }
+    out_.shape = c;
+    return std::move(out_);
+  }
+
   const Body& b_;
+  const std::set<FaceH>* only_ = nullptr;
   BRep_Builder bb_;
   BuiltShape out_;
 };
 
 }  // namespace
 
-std::optional<BuiltShape> to_shape(const Body& b, std::string* error) {
+std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only) {
   std::string local;
   if (!error) error = &local;
   try {
-    return Builder(b).run(error);
+    return Builder(b, only).run(error);
   } catch (const Standard_Failure& e) {
     *error = std::string("OpenCASCADE failed while building the shape: ") + e.GetMessageString();
   } catch (const std::exception& e) {

@@ -66,8 +66,8 @@ inline Surface transform(const Surface& s, const Similarity& m) {
   return std::visit(
       [&](const auto& x) -> Surface {
         using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, std::monostate>) {
-          return x;
+        if constexpr (std::is_same_v<T, std::monostate> || !requires { x.frame; }) {
+          return x;  // free-form surfaces are not generated here
         } else {
           T y = x;
           y.frame = m.frame(x.frame);

@@ -5,6 +5,8 @@
 // shortest ones), and every number the same double.
 #include "tests/io/reference_writer.h"
 
+#include <stdexcept>
+
 #include "kernel/assemble.h"
 
 namespace kintsugi::io::reference {
@@ -52,7 +54,8 @@ ojson surface_json(const geo::Surface& s) {
                               {"frame", frame_json(t.frame)},
                               {"major_radius", t.major_radius},
                               {"minor_radius", t.minor_radius}};
-               }},
+               },
+               [](const auto&) -> ojson { throw std::logic_error("reference writer: free-form surfaces are not covered"); }},
       s);
 }
 
@@ -75,7 +78,8 @@ ojson curve_json(const geo::Curve& c) {
                  ojson pts = ojson::array();
                  for (const auto& q : p.points) pts.push_back(vec3_json(q));
                  return ojson{{"type", "polyline"}, {"points", std::move(pts)}, {"chordal_error", p.chordal_error}};
-               }},
+               },
+               [](const geo::BSplineCurve&) -> ojson { throw std::logic_error("reference writer: free-form curves are not covered"); }},
       c);
 }
 

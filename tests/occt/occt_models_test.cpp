@@ -201,15 +201,15 @@ TEST(OcctModels, BSplineCylinderIsRecognised) {
   ASSERT_TRUE(plain) << err;
   // The faces come back as the analytic surfaces. Of the B-spline edges, the seam (a
   // degree-1 B-spline whose poles are on a line) is a line; the two circles, whose
-  // faces are B-spline surfaces, come back as polylines.
+  // faces are B-spline surfaces, come back as they are: exact B-spline curves.
   EXPECT_EQ(in->body.counts(), plain->body.counts());
-  int lines = 0, polylines = 0;
+  int lines = 0, bsplines = 0;
   for (EdgeH e : in->body.edges()) {
     lines += std::holds_alternative<geo::Line>(in->body.curve(e)) ? 1 : 0;
-    polylines += std::holds_alternative<geo::Polyline>(in->body.curve(e)) ? 1 : 0;
+    bsplines += std::holds_alternative<geo::BSplineCurve>(in->body.curve(e)) ? 1 : 0;
   }
   EXPECT_EQ(lines, 1);
-  EXPECT_EQ(polylines, 2);
+  EXPECT_EQ(bsplines, 2);
   int cylinders = 0;
   for (FaceH f : in->body.faces())
     if (const auto* c = std::get_if<geo::Cylinder>(&in->body.surface(f))) {
@@ -344,19 +344,30 @@ TEST(OcctModels, BSplineArcRunningAgainstItsSurfaceIsTheRightArc) {
   EXPECT_TRUE(v0.valid) << (v0.problems.empty() ? "" : v0.problems[0]);
 }
 
-TEST(OcctModels, FreeFormFaceIsRefusedWithItsLocator) {
+TEST(OcctModels, FreeFormFaceIsKeptExactly) {
   TColgp_Array2OfPnt pts(1, 5, 1, 5);
   for (int i = 1; i <= 5; ++i)
     for (int j = 1; j <= 5; ++j) pts(i, j) = gp_Pnt(i, j, std::sin(i) * std::cos(1.7 * j));
   Handle(Geom_BSplineSurface) s = GeomAPI_PointsToBSplineSurface(pts).Surface();
   TopoDS_Face face = BRepBuilderAPI_MakeFace(s, 1e-7).Face();
-  std::string err;
-  std::optional<io::CadImport> in = io::import_cad(write_shape(face, "wavy", CadFormat::step), CadFormat::step, &err);
-  EXPECT_FALSE(in);
-  EXPECT_NE(err.find("wavy.step"), std::string::npos) << err;
-  EXPECT_NE(err.find("1 B-spline surface"), std::string::npos) << err;
-  EXPECT_NE(err.find("face #1 (STEP entity #"), std::string::npos) << err;
-  EXPECT_NE(err.find("not within precision"), std::string::npos) << err;
+  for (CadFormat f : {CadFormat::step, CadFormat::brep}) {
+    std::string err;
+    std::optional<io::CadImport> in = io::import_cad(write_shape(face, "wavy", f), f, &err);
+    ASSERT_TRUE(in) << err;
+    ASSERT_EQ(in->body.counts().faces, 1u);
+    const auto* b = std::get_if<geo::BSplineSurface>(&in->body.surface(in->body.faces()[0]));
+    ASSERT_TRUE(b) << geo::surface_type_name(in->body.surface(in->body.faces()[0]));
+    // Exactly the surface written: its poles one for one.
+    ASSERT_EQ(b->u_count, s->NbUPoles());
+    ASSERT_EQ(b->v_count, s->NbVPoles());
+    for (int i = 1; i <= s->NbUPoles(); ++i)
+      for (int j = 1; j <= s->NbVPoles(); ++j)
+        EXPECT_LE((b->poles[std::size_t((i - 1) * b->v_count + j - 1)] -
+                   geo::Vec3(s->Pole(i, j).X(), s->Pole(i, j).Y(), s->Pole(i, j).Z()))
+                      .norm(),
+                  1e-12);
+    for (const Violation& v : check_topology(in->body)) ADD_FAILURE() << to_string(v);
+  }
 }
 
 }  // namespace

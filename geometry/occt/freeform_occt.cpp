@@ -1,0 +1,369 @@
+// OpenCASCADE behind geometry/freeform.h: free-form surfaces and curves are rebuilt once
+// from their data (Geom_BSplineSurface, Geom_SurfaceOfRevolution, ...) and kept in the
+// data's `cache`, with the projection helpers (ShapeAnalysis_Surface keeps its own
+// search grid), so repeated projections onto one face are cheap.
+#include "geometry/occt/freeform_occt.h"
+
+#include "geometry/freeform.h"
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <GCPnts_QuasiUniformDeflection.hxx>
+#include <GeomAPI_IntSS.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_OffsetSurface.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
+#include <Geom_ToroidalSurface.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Precision.hxx>
+#include <ShapeAnalysis_Curve.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <gp_Ax1.hxx>
+#include <gp_Ax3.hxx>
+
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+namespace kintsugi::geo::occt {
+
+namespace {
+
+gp_Pnt pnt(const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+gp_Dir dir(const Vec3& d) { return gp_Dir(d.x(), d.y(), d.z()); }
+Vec3 vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+Vec3 vec(const gp_Pnt& p) { return vec(p.XYZ()); }
+Vec3 vec(const gp_Vec& p) { return vec(p.XYZ()); }
+
+Handle(Geom_BSplineCurve) make_curve(const BSplineCurve& c) {
+  const int n = int(c.poles.size());
+  TColgp_Array1OfPnt poles(1, n);
+  for (int i = 0; i < n; ++i) poles(i + 1) = pnt(c.poles[std::size_t(i)]);
+  TColStd_Array1OfReal knots(1, int(c.knots.size()));
+  TColStd_Array1OfInteger mults(1, int(c.knots.size()));
+  for (std::size_t i = 0; i < c.knots.size(); ++i) {
+    knots(int(i) + 1) = c.knots[i];
+    mults(int(i) + 1) = c.multiplicities[i];
+  }
+  if (c.weights.empty()) return new Geom_BSplineCurve(poles, knots, mults, c.degree, c.periodic);
+  TColStd_Array1OfReal w(1, n);
+  for (int i = 0; i < n; ++i) w(i + 1) = c.weights[std::size_t(i)];
+  return new Geom_BSplineCurve(poles, w, knots, mults, c.degree, c.periodic);
+}
+
+Handle(Geom_BSplineSurface) make_surface(const BSplineSurface& b) {
+  TColgp_Array2OfPnt poles(1, b.u_count, 1, b.v_count);
+  for (int i = 0; i < b.u_count; ++i)
+    for (int j = 0; j < b.v_count; ++j) poles(i + 1, j + 1) = pnt(b.poles[std::size_t(i * b.v_count + j)]);
+  auto arrays = [](const std::vector<double>& k, const std::vector<int>& m, TColStd_Array1OfReal& ka, TColStd_Array1OfInteger& ma) {
+    for (std::size_t i = 0; i < k.size(); ++i) {
+      ka(int(i) + 1) = k[i];
+      ma(int(i) + 1) = m[i];
+    }
+  };
+  TColStd_Array1OfReal uk(1, int(b.u_knots.size())), vk(1, int(b.v_knots.size()));
+  TColStd_Array1OfInteger um(1, int(b.u_knots.size())), vm(1, int(b.v_knots.size()));
+  arrays(b.u_knots, b.u_multiplicities, uk, um);
+  arrays(b.v_knots, b.v_multiplicities, vk, vm);
+  if (b.weights.empty())
+    return new Geom_BSplineSurface(poles, uk, vk, um, vm, b.u_degree, b.v_degree, b.u_periodic, b.v_periodic);
+  TColStd_Array2OfReal w(1, b.u_count, 1, b.v_count);
+  for (int i = 0; i < b.u_count; ++i)
+    for (int j = 0; j < b.v_count; ++j) w(i + 1, j + 1) = b.weights[std::size_t(i * b.v_count + j)];
+  return new Geom_BSplineSurface(poles, w, uk, vk, um, vm, b.u_degree, b.v_degree, b.u_periodic, b.v_periodic);
+}
+
+// What is cached on a free-form surface's data: the OpenCASCADE surface and the
+// projection helper (not thread-safe: guarded).
+struct SurfaceCache {
+  Handle(Geom_Surface) surface;
+  Handle(ShapeAnalysis_Surface) analysis;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  std::mutex m;
+};
+struct CurveCache {
+  Handle(Geom_Curve) curve;
+  double t0 = 0, t1 = 0;
+  std::mutex m;
+};
+
+Handle(Geom_Surface) build(const Surface& s) {
+  if (const auto* b = std::get_if<BSplineSurface>(&s)) return make_surface(*b);
+  if (const auto* r = std::get_if<RevolutionSurface>(&s))
+    return new Geom_SurfaceOfRevolution(make_curve(r->basis), gp_Ax1(pnt(r->origin), dir(r->axis)));
+  if (const auto* e = std::get_if<ExtrusionSurface>(&s)) return new Geom_SurfaceOfLinearExtrusion(make_curve(e->basis), dir(e->direction));
+  if (const auto* o = std::get_if<OffsetSurface>(&s)) return new Geom_OffsetSurface(make_surface(o->basis), o->distance, Standard_True);
+  return nullptr;
+}
+
+template <class T>
+std::shared_ptr<const void>* cache_slot(const T& x) {
+  return &x.cache;
+}
+
+SurfaceCache& surface_cache(const Surface& s) {
+  std::shared_ptr<const void>* slot = std::visit(
+      [](const auto& x) -> std::shared_ptr<const void>* {
+        if constexpr (requires { x.cache; })
+          return cache_slot(x);
+        else
+          return nullptr;
+      },
+      s);
+  if (!slot) throw std::invalid_argument("not a free-form surface");
+  if (!*slot) {
+    auto c = std::make_shared<SurfaceCache>();
+    c->surface = build(s);
+    c->surface->Bounds(c->u0, c->u1, c->v0, c->v1);
+    c->analysis = new ShapeAnalysis_Surface(c->surface);
+    *slot = c;
+  }
+  return *const_cast<SurfaceCache*>(static_cast<const SurfaceCache*>(slot->get()));
+}
+
+CurveCache& curve_cache(const Curve& c) {
+  const auto* b = std::get_if<BSplineCurve>(&c);
+  if (!b) throw std::invalid_argument("not a free-form curve");
+  if (!b->cache) {
+    auto cc = std::make_shared<CurveCache>();
+    cc->curve = make_curve(*b);
+    cc->t0 = cc->curve->FirstParameter();
+    cc->t1 = cc->curve->LastParameter();
+    b->cache = cc;
+  }
+  return *const_cast<CurveCache*>(static_cast<const CurveCache*>(b->cache.get()));
+}
+
+// ---- the backend ------------------------------------------------------------------
+
+Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
+  SurfaceCache& c = surface_cache(s);
+  gp_Pnt p;
+  gp_Vec a, b;
+  c.surface->D1(uv.x(), uv.y(), p, a, b);
+  *du = vec(a);
+  *dv = vec(b);
+  return vec(p);
+}
+
+Vec2 surface_project(const Surface& s, const Vec3& p) {
+  SurfaceCache& c = surface_cache(s);
+  std::lock_guard<std::mutex> lock(c.m);
+  gp_Pnt2d uv = c.analysis->ValueOfUV(pnt(p), Precision::Confusion());
+  return Vec2(uv.X(), uv.Y());
+}
+
+void surface_bounds(const Surface& s, double* u0, double* u1, double* v0, double* v1) {
+  SurfaceCache& c = surface_cache(s);
+  *u0 = c.u0, *u1 = c.u1, *v0 = c.v0, *v1 = c.v1;
+}
+
+std::string surface_problem(const Surface& s) {
+  try {
+    SurfaceCache& c = surface_cache(s);
+    if (c.surface.IsNull()) return std::string(surface_type_name(s)) + ": OpenCASCADE could not build it";
+    if (const auto* r = std::get_if<RevolutionSurface>(&s); r && !(std::abs(r->axis.norm() - 1) < 1e-9))
+      return "revolution_surface: the axis is not a unit vector";
+  } catch (const Standard_Failure& e) {
+    return std::string(surface_type_name(s)) + ": OpenCASCADE refused the data: " + e.GetMessageString();
+  } catch (const std::exception& e) {
+    return std::string(surface_type_name(s)) + ": " + e.what();
+  }
+  return "";
+}
+
+Vec3 curve_d1(const Curve& c, double t, Vec3* d) {
+  CurveCache& cc = curve_cache(c);
+  gp_Pnt p;
+  gp_Vec v;
+  cc.curve->D1(t, p, v);
+  *d = vec(v);
+  return vec(p);
+}
+
+double curve_project(const Curve& c, const Vec3& p) {
+  CurveCache& cc = curve_cache(c);
+  std::lock_guard<std::mutex> lock(cc.m);
+  ShapeAnalysis_Curve sac;
+  gp_Pnt proj;
+  double t = cc.t0;
+  sac.Project(cc.curve, pnt(p), Precision::Confusion(), proj, t, Standard_False);
+  return t;
+}
+
+void curve_bounds(const Curve& c, double* t0, double* t1) {
+  CurveCache& cc = curve_cache(c);
+  *t0 = cc.t0, *t1 = cc.t1;
+}
+
+double curve_length(const Curve& c, double t0, double t1) {
+  CurveCache& cc = curve_cache(c);
+  GeomAdaptor_Curve ad(cc.curve);
+  return GCPnts_AbscissaPoint::Length(ad, std::min(t0, t1), std::max(t0, t1));
+}
+
+std::vector<Vec3> curve_sample(const Curve& c, double t0, double t1, double chordal) {
+  CurveCache& cc = curve_cache(c);
+  GeomAdaptor_Curve ad(cc.curve);
+  const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+  std::vector<Vec3> out;
+  if (hi > lo) {
+    GCPnts_QuasiUniformDeflection q(ad, std::max(chordal, 1e-12), lo, hi);
+    if (q.IsDone() && q.NbPoints() >= 2)
+      for (int i = 1; i <= q.NbPoints(); ++i) out.push_back(vec(q.Value(i)));
+  }
+  if (out.size() < 2) {
+    out.clear();
+    for (int i = 0; i <= 16; ++i) out.push_back(vec(cc.curve->Value(lo + (hi - lo) * i / 16.0)));
+  }
+  if (t0 > t1) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+std::string curve_problem(const Curve& c) {
+  try {
+    if (curve_cache(c).curve.IsNull()) return "bspline_curve: OpenCASCADE could not build it";
+  } catch (const Standard_Failure& e) {
+    return std::string("bspline_curve: OpenCASCADE refused the data: ") + e.GetMessageString();
+  }
+  return "";
+}
+
+// An analytic surface as an OpenCASCADE one (same parametrisation; see to_occt.cpp).
+Handle(Geom_Surface) any_surface(const Surface& s) {
+  auto ax3 = [](const Frame& f) { return gp_Ax3(pnt(f.origin), dir(f.z), dir(f.x)); };
+  if (const auto* p = std::get_if<Plane>(&s)) return new Geom_Plane(ax3(p->frame));
+  if (const auto* c = std::get_if<Cylinder>(&s)) return new Geom_CylindricalSurface(ax3(c->frame), c->radius);
+  if (const auto* c = std::get_if<Cone>(&s)) {
+    if (c->half_angle >= 0) return new Geom_ConicalSurface(ax3(c->frame), c->half_angle, c->radius);
+    return new Geom_ConicalSurface(gp_Ax3(pnt(c->frame.origin), dir(-c->frame.z), dir(c->frame.x)), -c->half_angle, c->radius);
+  }
+  if (const auto* c = std::get_if<Sphere>(&s)) return new Geom_SphericalSurface(ax3(c->frame), c->radius);
+  if (const auto* c = std::get_if<Torus>(&s)) return new Geom_ToroidalSurface(ax3(c->frame), c->major_radius, c->minor_radius);
+  return surface_cache(s).surface;
+}
+
+// An OpenCASCADE intersection curve as ours: lines, circles and ellipses as such, the
+// rest as exact B-splines (bounded ones only).
+std::optional<Curve> from_geom(const Handle(Geom_Curve)& c) {
+  Handle(Geom_Curve) basis = c;
+  while (auto t = Handle(Geom_TrimmedCurve)::DownCast(basis)) basis = t->BasisCurve();
+  if (auto l = Handle(Geom_Line)::DownCast(basis)) return Line{vec(l->Position().Location()), vec(gp_Vec(l->Position().Direction()))};
+  auto frame = [](const gp_Ax2& a) { return Frame{vec(a.Location()), vec(gp_Vec(a.XDirection())), vec(gp_Vec(a.Direction()))}; };
+  if (auto k = Handle(Geom_Circle)::DownCast(basis)) return Circle{frame(k->Position()), k->Radius()};
+  if (auto e = Handle(Geom_Ellipse)::DownCast(basis)) return Ellipse{frame(e->Position()), e->MajorRadius(), e->MinorRadius()};
+  if (Precision::IsInfinite(c->FirstParameter()) || Precision::IsInfinite(c->LastParameter())) return std::nullopt;
+  std::string why;
+  if (std::optional<BSplineCurve> b = to_bspline(c, &why)) return Curve(*b);
+  return std::nullopt;
+}
+
+std::vector<Curve> intersect(const Surface& a, const Surface& b, double precision) {
+  std::vector<Curve> out;
+  try {
+    GeomAPI_IntSS inter(any_surface(a), any_surface(b), std::max(precision, Precision::Confusion()));
+    if (!inter.IsDone()) return out;
+    for (int i = 1; i <= inter.NbLines(); ++i)
+      if (std::optional<Curve> c = from_geom(inter.Line(i))) out.push_back(*c);
+  } catch (const Standard_Failure&) {
+    out.clear();
+  }
+  return out;
+}
+
+const FreeformBackend kBackend{surface_d1,  surface_project, surface_bounds, surface_problem, curve_d1,   curve_project,
+                               curve_bounds, curve_length,    curve_sample,   curve_problem,   intersect};
+
+}  // namespace
+
+void register_freeform_backend() { set_freeform_backend(&kBackend); }
+
+BSplineCurve bspline_data(const Handle(Geom_BSplineCurve)& c) {
+  BSplineCurve out;
+  out.degree = c->Degree();
+  out.periodic = c->IsPeriodic();
+  for (int i = 1; i <= c->NbPoles(); ++i) out.poles.push_back(vec(c->Pole(i)));
+  if (c->IsRational())
+    for (int i = 1; i <= c->NbPoles(); ++i) out.weights.push_back(c->Weight(i));
+  for (int i = 1; i <= c->NbKnots(); ++i) {
+    out.knots.push_back(c->Knot(i));
+    out.multiplicities.push_back(c->Multiplicity(i));
+  }
+  return out;
+}
+
+BSplineSurface bspline_data(const Handle(Geom_BSplineSurface)& s) {
+  BSplineSurface out;
+  out.u_degree = s->UDegree();
+  out.v_degree = s->VDegree();
+  out.u_count = s->NbUPoles();
+  out.v_count = s->NbVPoles();
+  out.u_periodic = s->IsUPeriodic();
+  out.v_periodic = s->IsVPeriodic();
+  const bool rational = s->IsURational() || s->IsVRational();
+  for (int i = 1; i <= out.u_count; ++i)
+    for (int j = 1; j <= out.v_count; ++j) {
+      out.poles.push_back(vec(s->Pole(i, j)));
+      if (rational) out.weights.push_back(s->Weight(i, j));
+    }
+  for (int i = 1; i <= s->NbUKnots(); ++i) {
+    out.u_knots.push_back(s->UKnot(i));
+    out.u_multiplicities.push_back(s->UMultiplicity(i));
+  }
+  for (int i = 1; i <= s->NbVKnots(); ++i) {
+    out.v_knots.push_back(s->VKnot(i));
+    out.v_multiplicities.push_back(s->VMultiplicity(i));
+  }
+  return out;
+}
+
+std::optional<BSplineCurve> to_bspline(const Handle(Geom_Curve)& c, std::string* why) {
+  try {
+    if (auto b = Handle(Geom_BSplineCurve)::DownCast(c)) return bspline_data(b);
+    Handle(Geom_BSplineCurve) b = GeomConvert::CurveToBSplineCurve(c);
+    if (b.IsNull()) return *why = std::string(c->DynamicType()->Name()) + " cannot be converted to a B-spline", std::nullopt;
+    return bspline_data(b);
+  } catch (const Standard_Failure& e) {
+    *why = std::string(c->DynamicType()->Name()) + " cannot be converted to a B-spline: " + e.GetMessageString();
+  }
+  return std::nullopt;
+}
+
+std::optional<BSplineSurface> to_bspline(const Handle(Geom_Surface)& s, std::string* why) {
+  try {
+    if (auto b = Handle(Geom_BSplineSurface)::DownCast(s)) return bspline_data(b);
+    Handle(Geom_BSplineSurface) b = GeomConvert::SurfaceToBSplineSurface(s);
+    if (b.IsNull()) return *why = std::string(s->DynamicType()->Name()) + " cannot be converted to a B-spline", std::nullopt;
+    return bspline_data(b);
+  } catch (const Standard_Failure& e) {
+    *why = std::string(s->DynamicType()->Name()) + " cannot be converted to a B-spline: " + e.GetMessageString();
+  }
+  return std::nullopt;
+}
+
+Handle(Geom_Surface) geom_surface(const Surface& s) {
+  if (!is_freeform(s)) return nullptr;
+  return surface_cache(s).surface;
+}
+
+Handle(Geom_Curve) geom_curve(const Curve& c) {
+  if (!is_freeform(c)) return nullptr;
+  return curve_cache(c).curve;
+}
+
+}  // namespace kintsugi::geo::occt

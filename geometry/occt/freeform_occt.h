@@ -1,0 +1,33 @@
+// The free-form backend (geometry/freeform.h) on OpenCASCADE's geometry classes, and the
+// exact conversions between our free-form data and OpenCASCADE's objects. Compiled into
+// kintsugi_occt (geometry/ itself never links OpenCASCADE).
+#pragma once
+
+#include "geometry/types.h"
+
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_Surface.hxx>
+
+#include <optional>
+#include <string>
+
+namespace kintsugi::geo::occt {
+
+// Registers the backend (idempotent). The CLI calls it at start-up; import_cad too.
+void register_freeform_backend();
+
+// Exact conversions. `to_bspline` of a curve or surface that is not a B-spline converts it
+// with GeomConvert (exact for conics and surfaces of revolution and extrusion; a curve or
+// surface unbounded in a direction must be trimmed first). nullopt with *why on failure.
+BSplineCurve bspline_data(const Handle(Geom_BSplineCurve)& c);
+BSplineSurface bspline_data(const Handle(Geom_BSplineSurface)& s);
+std::optional<BSplineCurve> to_bspline(const Handle(Geom_Curve)& c, std::string* why);
+std::optional<BSplineSurface> to_bspline(const Handle(Geom_Surface)& s, std::string* why);
+
+// Our free-form geometry as OpenCASCADE objects (built from the data, cached on it).
+Handle(Geom_Surface) geom_surface(const Surface& s);  // free-form alternatives only; null otherwise
+Handle(Geom_Curve) geom_curve(const Curve& c);        // BSplineCurve only; null otherwise
+
+}  // namespace kintsugi::geo::occt

@@ -1,0 +1,343 @@
+#include "invariants/region_validity.h"
+
+#include "geometry/curve.h"
+#include "geometry/surface.h"
+#include "invariants/element_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <variant>
+
+namespace kintsugi {
+
+namespace {
+
+ExternalRegionCheck g_external = nullptr;
+
+std::string fmt(double d) {
+  std::ostringstream os;
+  os.precision(3);
+  os << d;
+  return os.str();
+}
+
+bool has_surface(const Body& b, FaceH f) { return !std::holds_alternative<std::monostate>(b.surface(f)); }
+bool has_curve(const Body& b, EdgeH e) { return !std::holds_alternative<std::monostate>(b.curve(e)); }
+double chordal_slack(const geo::Curve& c) {
+  if (const auto* p = std::get_if<geo::Polyline>(&c)) return p->chordal_error;
+  return 0.0;
+}
+
+// The touched elements and their surroundings (see the header).
+struct Grown {
+  std::set<VertexH> vs;
+  std::set<EdgeH> es;
+  std::set<FaceH> fs;
+};
+
+Grown grow(const Body& b, const Region& r) {
+  Grown g;
+  for (VertexH v : r.vertices)
+    if (b.alive(v)) {
+      g.vs.insert(v);
+      for (HalfedgeH h : b.outgoing(v)) g.es.insert(edge_of(h));
+    }
+  for (EdgeH e : r.edges)
+    if (b.alive(e)) g.es.insert(e);
+  for (FaceH f : r.faces)
+    if (b.alive(f)) g.fs.insert(f);
+  for (EdgeH e : std::set<EdgeH>(g.es))
+    for (unsigned s = 0; s < 2; ++s)
+      if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) g.fs.insert(f);
+  for (FaceH f : g.fs)
+    for (LoopH l : b.loops_of(f)) {
+      if (b.is_lone(l)) {
+        g.vs.insert(b.lone_vertex(l));
+        continue;
+      }
+      for (HalfedgeH h : b.loop_halfedges(l)) g.es.insert(edge_of(h));
+    }
+  for (EdgeH e : g.es) {
+    HalfedgeH h = halfedge_of(e, 0);
+    g.vs.insert(b.origin(h));
+    g.vs.insert(b.target(h));
+  }
+  return g;
+}
+
+// ---- parameter domain ---------------------------------------------------------------
+
+struct Seg {
+  geo::Vec2 a, b;
+  std::uint32_t loop;  // index among the face's loops
+  std::uint32_t edge;  // EdgeH index: the two sides of a seam are never compared
+  std::uint32_t pos;   // position along the loop, for adjacency
+};
+
+double cross2(const geo::Vec2& a, const geo::Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Proper crossing of two segments: each one's ends strictly on both sides of the other,
+// by more than `eps` (a relative margin in parameter units), so that touching at shared
+// vertices and running along each other are not crossings.
+bool crosses(const geo::Vec2& p, const geo::Vec2& q, const geo::Vec2& r, const geo::Vec2& s, double eps) {
+  const geo::Vec2 d1 = q - p, d2 = s - r;
+  const double l1 = d1.norm(), l2 = d2.norm();
+  if (l1 <= eps || l2 <= eps) return false;
+  const double o1 = cross2(d1, r - p) / l1, o2 = cross2(d1, s - p) / l1;
+  const double o3 = cross2(d2, p - r) / l2, o4 = cross2(d2, q - r) / l2;
+  return ((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps));
+}
+
+// Points where the surface's parametrisation is singular (sphere poles, cone apex): the
+// angle there is arbitrary, so segments ending there are left out.
+std::vector<geo::Vec3> singular_points(const geo::Surface& s) {
+  if (const auto* sp = std::get_if<geo::Sphere>(&s))
+    return {sp->frame.origin + sp->radius * sp->frame.z, sp->frame.origin - sp->radius * sp->frame.z};
+  if (const auto* c = std::get_if<geo::Cone>(&s)) return {geo::apex(*c)};
+  return {};
+}
+
+struct FaceLoops {
+  std::vector<Seg> segs;
+  std::vector<std::vector<geo::Vec2>> closed;  // loops that close in the domain (no winding)
+  std::vector<bool> closed_is_outer;
+  std::vector<LoopH> closed_loop;
+};
+
+FaceLoops map_loops(const Body& b, FaceH f, double chordal, double near_singular) {
+  FaceLoops out;
+  const geo::Surface& s = b.surface(f);
+  const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
+  const std::vector<geo::Vec3> singular = singular_points(s);
+  std::uint32_t li = 0;
+  for (LoopH l : b.loops_of(f)) {
+    if (b.is_lone(l)) {
+      ++li;
+      continue;
+    }
+    std::vector<geo::Vec2> uv;
+    std::vector<std::uint32_t> edge_at;  // edge of the segment starting at point k
+    std::vector<bool> at_singular;
+    bool have = false;
+    geo::Vec2 last(0, 0);
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      std::vector<geo::Vec3> pts = halfedge_polyline(b, h, chordal);
+      for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        bool sing = false;
+        for (const geo::Vec3& q : singular) sing = sing || (pts[k] - q).norm() <= near_singular;
+        geo::Vec2 p = geo::parameters(s, pts[k]);
+        if (have) {  // unwrap the angles continuously along the loop
+          if (pu) p.x() += 2 * M_PI * std::round((last.x() - p.x()) / (2 * M_PI));
+          if (pv) p.y() += 2 * M_PI * std::round((last.y() - p.y()) / (2 * M_PI));
+        }
+        if (!sing) {
+          last = p;
+          have = true;
+        }
+        uv.push_back(p);
+        edge_at.push_back(edge_of(h).idx());
+        at_singular.push_back(sing);
+      }
+    }
+    if (uv.size() < 2) {
+      ++li;
+      continue;
+    }
+    // Closing point: the first point again, unwrapped from the last.
+    geo::Vec2 end = uv.front();
+    if (pu) end.x() += 2 * M_PI * std::round((last.x() - end.x()) / (2 * M_PI));
+    if (pv) end.y() += 2 * M_PI * std::round((last.y() - end.y()) / (2 * M_PI));
+    const bool winds = (end - uv.front()).norm() > M_PI;
+    bool any_singular = false;
+    for (std::size_t k = 0; k < uv.size(); ++k) {
+      const std::size_t n = k + 1;
+      const geo::Vec2 b2 = n < uv.size() ? uv[n] : end;
+      const bool sing = at_singular[k] || at_singular[n % uv.size()];
+      any_singular = any_singular || at_singular[k];
+      if (!sing) out.segs.push_back({uv[k], b2, li, edge_at[k], std::uint32_t(k)});
+    }
+    if (!winds && !any_singular) {
+      out.closed.push_back(uv);
+      out.closed_is_outer.push_back(b.is_outer(l));
+      out.closed_loop.push_back(l);
+    }
+    ++li;
+  }
+  return out;
+}
+
+double signed_area(const std::vector<geo::Vec2>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * a;
+}
+
+void check_face_loops(const Body& b, FaceH f, const geo::Tolerances& tol, std::vector<Violation>& out) {
+  const geo::Surface& s = b.surface(f);
+  const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
+  const FaceLoops fl = map_loops(b, f, chordal, std::max(tol.precision * 100, chordal));
+  const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
+
+  // Margin in parameter units: the precision over the surface's scale for angles, the
+  // precision itself for lengths (planes, cylinder heights).
+  const double scale = std::max(geo::surface_scale(s), tol.length);
+  const double eps = std::max(tol.precision / scale, 1e-12) + (std::holds_alternative<geo::Plane>(s) ? tol.precision : 0.0);
+
+  std::vector<geo::Vec2> shifts{{0, 0}};
+  if (pu) shifts.push_back({2 * M_PI, 0}), shifts.push_back({-2 * M_PI, 0});
+  if (pv) {
+    std::size_t n = shifts.size();
+    for (std::size_t i = 0; i < n; ++i) shifts.push_back(shifts[i] + geo::Vec2(0, 2 * M_PI)), shifts.push_back(shifts[i] - geo::Vec2(0, 2 * M_PI));
+  }
+
+  // Sweep over u: segments sorted by their smallest u; each is compared with those that
+  // start before it ends (with every period shift of the other one).
+  std::vector<Seg> segs = fl.segs;
+  std::vector<std::pair<double, std::size_t>> order;
+  std::vector<Seg> all;  // shifted copies, each remembering its original
+  std::vector<std::size_t> orig;
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    for (const geo::Vec2& d : shifts) {
+      Seg c = segs[i];
+      c.a += d;
+      c.b += d;
+      all.push_back(c);
+      orig.push_back(i);
+    }
+  for (std::size_t i = 0; i < all.size(); ++i) order.push_back({std::min(all[i].a.x(), all[i].b.x()), i});
+  std::sort(order.begin(), order.end());
+  bool self_reported = false, cross_reported = false;
+  for (std::size_t oi = 0; oi < order.size() && !(self_reported && cross_reported); ++oi) {
+    const std::size_t i = order[oi].second;
+    const Seg& si = all[i];
+    const double umax = std::max(si.a.x(), si.b.x());
+    for (std::size_t oj = oi + 1; oj < order.size() && order[oj].first <= umax + eps; ++oj) {
+      const std::size_t j = order[oj].second;
+      if (orig[i] == orig[j]) continue;
+      const Seg& sj = all[j];
+      // Pieces of one edge (a smooth curve, or a seam's two sides a period apart) are not compared.
+      if (si.edge == sj.edge) continue;
+      if (!crosses(si.a, si.b, sj.a, sj.b, eps)) continue;
+      const bool same = si.loop == sj.loop;
+      if (same && self_reported) continue;
+      if (!same && cross_reported) continue;
+      (same ? self_reported : cross_reported) = true;
+      out.push_back({same ? "loop_self_intersection" : "loops_cross", {f.str(), "e" + std::to_string(si.edge), "e" + std::to_string(sj.edge)},
+                     same ? "a loop of " + f.str() + " crosses itself in the parameter domain (edges e" + std::to_string(si.edge) +
+                                " and e" + std::to_string(sj.edge) + ")"
+                          : "two loops of " + f.str() + " cross in the parameter domain (edges e" + std::to_string(si.edge) +
+                                " and e" + std::to_string(sj.edge) + ")",
+                     0.0});
+    }
+  }
+
+  // Orientation of loops that close in the domain, where in/out is unambiguous.
+  const bool orientable = std::holds_alternative<geo::Plane>(s) || std::holds_alternative<geo::Cylinder>(s) ||
+                          std::holds_alternative<geo::Cone>(s);
+  if (!orientable) return;
+  geo::Vec3 du, dv;
+  geo::Vec2 uv0 = fl.closed.empty() ? geo::Vec2(0, 0) : fl.closed.front().front();
+  geo::derivatives(s, uv0, du, dv);
+  const double param_sense = du.cross(dv).dot(geo::normal(s, uv0)) >= 0 ? 1.0 : -1.0;
+  const double sense = (b.same_sense(f) ? 1.0 : -1.0) * param_sense;
+  for (std::size_t k = 0; k < fl.closed.size(); ++k) {
+    const double a = signed_area(fl.closed[k]) * sense;
+    const bool outer = fl.closed_is_outer[k];
+    if ((outer && a < 0) || (!outer && a > 0))
+      out.push_back({"loop_orientation", {f.str(), fl.closed_loop[k].str()},
+                     std::string(outer ? "the outer loop " : "the hole ") + fl.closed_loop[k].str() + " of " + f.str() +
+                         " turns " + (outer ? "clockwise" : "counter-clockwise") + " about the outward normal",
+                     0.0});
+  }
+}
+
+}  // namespace
+
+Region whole_body(const Body& b) {
+  Region r;
+  for (VertexH v : b.vertices()) r.vertices.insert(v);
+  for (EdgeH e : b.edges()) r.edges.insert(e);
+  for (FaceH f : b.faces()) r.faces.insert(f);
+  return r;
+}
+
+double lies_on_limit(const geo::Tolerances& tol, double input_deviation) {
+  return std::max(tol.precision, std::isfinite(input_deviation) ? input_deviation * 1.001 : tol.precision);
+}
+
+std::vector<Violation> loop_violations(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol) {
+  std::vector<Violation> out;
+  for (FaceH f : faces)
+    if (b.alive(f) && has_surface(b, f)) check_face_loops(b, f, tol, out);
+  return out;
+}
+
+std::vector<Violation> region_violations(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on) {
+  std::vector<Violation> out;
+  const Grown g = grow(b, r);
+  auto off = [&](double d, const char* inv, std::vector<std::string> els, const std::string& what) {
+    if (!std::isfinite(d)) d = HUGE_VAL;
+    if (d > lies_on) out.push_back({inv, std::move(els), what + " is " + fmt(d) + " away (limit " + fmt(lies_on) + ")", d});
+  };
+  for (FaceH f : g.fs)
+    if (!has_surface(b, f)) out.push_back({"face_without_surface", {f.str()}, f.str() + " has no surface", 0.0});
+  for (EdgeH e : g.es)
+    if (!has_curve(b, e)) out.push_back({"edge_without_curve", {e.str()}, e.str() + " has no curve", 0.0});
+  if (!out.empty()) return out;
+
+  for (VertexH v : g.vs) {
+    const geo::Vec3& p = b.point(v);
+    for (HalfedgeH h : b.outgoing(v)) {
+      EdgeH e = edge_of(h);
+      off(geo::closest_point(b.curve(e), p).distance - chordal_slack(b.curve(e)), "vertex_on_curve", {v.str(), e.str()},
+          v.str() + " from the curve of " + e.str());
+      if (!b.is_border(h))
+        off(std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface", {v.str(), b.face(h).str()},
+            v.str() + " from the surface of " + b.face(h).str());
+    }
+  }
+  for (EdgeH e : g.es) {
+    HalfedgeH h = halfedge_of(e, 0);
+    VertexH v0 = b.origin(h), v1 = b.target(h);
+    const geo::Vec3 &p0 = b.point(v0), &p1 = b.point(v1);
+    const geo::Curve& c = b.curve(e);
+    if (v0 != v1 && (p0 - p1).norm() <= lies_on) {
+      out.push_back({"degenerate_edge", {e.str()}, e.str() + " joins two distinct vertices at the same point", 0.0});
+      continue;
+    }
+    std::vector<geo::Vec3> probes;
+    if (std::holds_alternative<geo::Line>(c)) {
+      for (double s : {0.25, 0.5, 0.75}) probes.push_back(p0 + s * (p1 - p0));
+    } else {
+      double coincide = v0 == v1 ? std::max(lies_on, 1e-300) : 0.0;
+      geo::ParameterRange pr = geo::parameter_range(c, p0, p1, coincide);
+      for (double s : {0.125, 0.25, 0.5, 0.75, 0.875}) probes.push_back(geo::evaluate(c, pr.t0 + s * (pr.t1 - pr.t0)));
+    }
+    for (HalfedgeH side : {h, twin(h)}) {
+      if (b.is_border(side)) continue;
+      FaceH f = b.face(side);
+      double worst = 0.0;
+      for (const geo::Vec3& q : probes) worst = std::max(worst, std::abs(geo::signed_distance(b.surface(f), q)));
+      off(worst - chordal_slack(c), "edge_on_surface", {e.str(), f.str()}, e.str() + " from the surface of " + f.str());
+    }
+  }
+  std::vector<Violation> loops = loop_violations(b, g.fs, tol);
+  out.insert(out.end(), loops.begin(), loops.end());
+  if (out.empty() && g_external) {
+    Region grown{g.vs, g.es, g.fs};
+    if (std::string why = g_external(b, grown); !why.empty()) out.push_back({"external_check", {}, why, 0.0});
+  }
+  return out;
+}
+
+std::string region_validity(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on) {
+  std::vector<Violation> v = region_violations(b, r, tol, lies_on);
+  if (v.empty()) return "";
+  return v.front().invariant + ": " + v.front().detail;
+}
+
+void set_external_region_check(ExternalRegionCheck fn) { g_external = fn; }
+ExternalRegionCheck external_region_check() { return g_external; }
+
+}  // namespace kintsugi
