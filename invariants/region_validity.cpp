@@ -273,7 +273,9 @@ std::vector<Violation> loop_violations(const Body& b, const std::set<FaceH>& fac
   return out;
 }
 
-std::vector<Violation> region_violations(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on) {
+std::vector<Violation> region_violations(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on,
+                                         double coincide_within) {
+  if (!(coincide_within >= 0)) coincide_within = lies_on;
   std::vector<Violation> out;
   const Grown g = grow(b, r);
   auto off = [&](double d, const char* inv, std::vector<std::string> els, const std::string& what) {
@@ -302,7 +304,7 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
     VertexH v0 = b.origin(h), v1 = b.target(h);
     const geo::Vec3 &p0 = b.point(v0), &p1 = b.point(v1);
     const geo::Curve& c = b.curve(e);
-    if (v0 != v1 && (p0 - p1).norm() <= lies_on) {
+    if (v0 != v1 && (p0 - p1).norm() <= coincide_within) {
       out.push_back({"degenerate_edge", {e.str()}, e.str() + " joins two distinct vertices at the same point", 0.0});
       continue;
     }
@@ -310,7 +312,7 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
     if (std::holds_alternative<geo::Line>(c)) {
       for (double s : {0.25, 0.5, 0.75}) probes.push_back(p0 + s * (p1 - p0));
     } else {
-      double coincide = v0 == v1 ? std::max(lies_on, 1e-300) : 0.0;
+      double coincide = v0 == v1 ? std::max(coincide_within, 1e-300) : 0.0;
       geo::ParameterRange pr = geo::parameter_range(c, p0, p1, coincide);
       for (double s : {0.125, 0.25, 0.5, 0.75, 0.875}) probes.push_back(geo::evaluate(c, pr.t0 + s * (pr.t1 - pr.t0)));
     }
@@ -331,8 +333,9 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
   return out;
 }
 
-std::string region_validity(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on) {
-  std::vector<Violation> v = region_violations(b, r, tol, lies_on);
+std::string region_validity(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on,
+                            double coincide_within) {
+  std::vector<Violation> v = region_violations(b, r, tol, lies_on, coincide_within);
   if (v.empty()) return "";
   return v.front().invariant + ": " + v.front().detail;
 }

@@ -4,8 +4,8 @@
 // such a region, by our own geometry:
 //   * `vertex_on_curve`, `vertex_on_surface`, `edge_on_surface`: vertices on the curves of
 //     their edges and the surfaces of their faces, edges on both faces' surfaces, within
-//     `precision` (the modelling precision, or what the input already had: see
-//     RegionLimits);
+//     `lies_on` (the modelling precision, or what the input already had: see
+//     lies_on_limit);
 //   * `degenerate_edge`: an edge whose two distinct vertices coincide (OpenCASCADE cannot
 //     write it: "different points on a closed curve", "line through identical points");
 //   * `loop_self_intersection`, `loops_cross`: in the face's parameter domain (angles
@@ -46,10 +46,16 @@ Region whole_body(const Body& b);
 double lies_on_limit(const geo::Tolerances& tol, double input_deviation);
 
 // Every violation in the region; `lies_on` is the distance limit for the geometric ones.
-std::vector<Violation> region_violations(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on);
+// `coincide_within` (default: `lies_on`) is the distance at which two distinct vertices
+// are one point (degenerate_edge): a repair whose positions are only consistent to the
+// tolerance is gated with `lies_on` = the tolerance, but an edge shorter than that is a
+// short edge for pass 11, not a degenerate one; only below the precision is it that.
+std::vector<Violation> region_violations(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on,
+                                         double coincide_within = -1);
 
 // "" when the region is valid, else the first violation as a sentence.
-std::string region_validity(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on);
+std::string region_validity(const Body& b, const Region& r, const geo::Tolerances& tol, double lies_on,
+                            double coincide_within = -1);
 
 // Only the parameter-domain checks (self-intersection, crossing, orientation) of faces.
 std::vector<Violation> loop_violations(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol);

@@ -112,9 +112,10 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   // distances are gated at the tolerance, but its loops must still neither cross nor turn
   // the wrong way, and it must still be writable.
   if (why.empty()) {
-    double lies_on = options.lies_on > 0 ? options.lies_on : tol.precision;
-    if (!solve_why.empty()) lies_on = std::max(lies_on, tol.length);
-    std::string invalid = region_validity(b, {touched.vertices, touched.edges, touched.faces}, tol, lies_on);
+    const double at_precision = options.lies_on > 0 ? options.lies_on : tol.precision;
+    const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
+    std::string invalid =
+        region_validity(b, {touched.vertices, touched.edges, touched.faces}, tol, lies_on, at_precision);
     if (!invalid.empty()) why = "the result would not be valid: " + invalid;
   }
   if (why.empty() && options.check_topology_each_repair) {

@@ -4,6 +4,7 @@
 // precision; an over-constrained region (four pinned corners of one plane, the planar
 // analogue of the paper's Figure 32(b)) is refused with its constraints named and the
 // body untouched.
+#include "tests/support/analytic_surface.h"
 #include "geometry/surface.h"
 #include "geometry/transform.h"
 #include "invariants/element_geometry.h"
@@ -271,7 +272,7 @@ TEST(BeautifySolve, CurvedSurfacesAreSolvedBackToTheirSamples) {
     std::visit(
         [&](auto& q) {
           using S = std::decay_t<decltype(q)>;
-          if constexpr (!std::is_same_v<S, std::monostate>) {
+          if constexpr (geo::kAnalyticSurface<S>) {
             q.frame.origin += 0.1 * tol.length * q.frame.x;
             if constexpr (std::is_same_v<S, geo::Torus>) q.minor_radius += 0.1 * tol.length;
             else if constexpr (!std::is_same_v<S, geo::Plane>) q.radius += 0.1 * tol.length;

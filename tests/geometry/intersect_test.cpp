@@ -1,3 +1,4 @@
+#include "tests/support/analytic_surface.h"
 #include "geometry/intersect.h"
 
 #include "geometry/curve.h"
@@ -186,7 +187,7 @@ std::pair<Surface, Surface> gen_pair() {
   Surface b = testing::gen_any_surface();
   if (mode == 0) return {a, b};
   const Frame fa = std::visit([](const auto& s) -> Frame {
-    if constexpr (std::is_same_v<std::decay_t<decltype(s)>, std::monostate>) return Frame{};
+    if constexpr (!kintsugi::geo::kAnalyticSurface<std::decay_t<decltype(s)>>) return Frame{};
     else return s.frame;
   }, a);
   const double shift = gen_real(-2.0, 2.0);
@@ -195,7 +196,7 @@ std::pair<Surface, Surface> gen_pair() {
   else if (mode == 2) fb = frame_from_axis(fa.origin + shift * fa.z, fa.z.cross(fa.x));  // through the axis
   else fb = frame_from_axis(fa.origin + shift * fa.x, testing::gen_unit());  // near, any direction
   std::visit([&](auto& s) {
-    if constexpr (!std::is_same_v<std::decay_t<decltype(s)>, std::monostate>) s.frame = fb;
+    if constexpr (kintsugi::geo::kAnalyticSurface<std::decay_t<decltype(s)>>) s.frame = fb;
   }, b);
   return {a, b};
 }

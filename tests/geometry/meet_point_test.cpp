@@ -1,3 +1,4 @@
+#include "tests/support/analytic_surface.h"
 #include "geometry/meet_point.h"
 
 #include "geometry/frame.h"
@@ -60,7 +61,7 @@ RC_GTEST_PROP(MeetPointProperty, FindsAPointOnThreeSurfacesThroughIt, ()) {
     // Translate the surface so it passes through p.
     const SurfacePoint c = closest_point(x, p);
     std::visit([&](auto& y) {
-      if constexpr (!std::is_same_v<std::decay_t<decltype(y)>, std::monostate>) y.frame.origin += p - c.point;
+      if constexpr (kintsugi::geo::kAnalyticSurface<std::decay_t<decltype(y)>>) y.frame.origin += p - c.point;
     }, x);
     s.push_back(x);
   }

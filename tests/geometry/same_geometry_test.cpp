@@ -1,3 +1,4 @@
+#include "tests/support/analytic_surface.h"
 #include "geometry/same_geometry.h"
 
 #include "geometry/frame.h"
@@ -47,7 +48,7 @@ TEST(SameGeometry, FitRecoversEachType) {
     // Start from a perturbed model of the same type.
     Surface model = t;
     std::visit([](auto& s) {
-      if constexpr (!std::is_same_v<std::decay_t<decltype(s)>, std::monostate>) {
+      if constexpr (kintsugi::geo::kAnalyticSurface<std::decay_t<decltype(s)>>) {
         s.frame = frame_from_axis(s.frame.origin + Vec3(0.05, -0.03, 0.02), s.frame.z + Vec3(0.02, 0.01, 0), s.frame.x);
       }
     }, model);
@@ -88,7 +89,7 @@ RC_GTEST_PROP(SameGeometryProperty, FitOfExactSamplesReproducesTheSurface, ()) {
   Surface model = t;
   const Vec3 shift = testing::gen_vec(0.02), tilt = testing::gen_vec(0.02);
   std::visit([&](auto& x) {
-    if constexpr (!std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+    if constexpr (kintsugi::geo::kAnalyticSurface<std::decay_t<decltype(x)>>)
       x.frame = frame_from_axis(x.frame.origin + shift, x.frame.z + tilt, x.frame.x);
   }, model);
   const SurfaceFit f = fit_surface_like(model, pts);
