@@ -98,15 +98,17 @@ struct SurfaceCache {
   Handle(Geom_Surface) surface;
   Handle(ShapeAnalysis_Surface) analysis;
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  // The last projection's parameters: projections come in runs along a boundary, each
-  // point near the last, so Newton from there (NextValueOfUV) replaces the global grid
-  // search of ValueOfUV (measured: most of detect's time on a B-spline part).
+  // The last projection's parameters: projections come in runs (along a boundary, or a
+  // meeting point's iterations), each point near the last, so Gauss-Newton from there
+  // replaces the global grid search of ValueOfUV (measured: most of detect's and
+  // beautify's time on B-spline parts).
   bool has_last = false;
   gp_Pnt2d last;
-  // Newton's foot is kept when it is within this of the point (1e-4 of the
-  // surface's extent, so scaling the model scales it; Precision::Confusion() for
-  // unbounded surfaces): a foot that near is the nearest point unless the surface folds
-  // back within that distance of itself.
+  // A converged foot is kept when it is within this of the point (1e-2 of the surface's
+  // extent, so scaling the model scales it; Precision::Confusion() for unbounded
+  // surfaces): the foot is then the nearest point unless the surface curves or folds
+  // back within that distance, which the parts kintsugi repairs (faces whose features
+  // are far larger than its tolerance) do not.
   double near_enough = Precision::Confusion();
   std::mutex m;
 };
@@ -149,7 +151,7 @@ SurfaceCache& surface_cache(const Surface& s) {
         std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100) {
       Bnd_Box box;
       BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
-      if (!box.IsVoid()) c->near_enough = std::max(Precision::Confusion(), 1e-4 * std::sqrt(box.SquareExtent()));
+      if (!box.IsVoid()) c->near_enough = std::max(Precision::Confusion(), 1e-2 * std::sqrt(box.SquareExtent()));
     }
     *slot = c;
   }
@@ -184,12 +186,11 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
 Vec2 surface_project(const Surface& s, const Vec3& p) {
   SurfaceCache& c = surface_cache(s);
   std::lock_guard<std::mutex> lock(c.m);
-  // Projections come in runs along a boundary, each point near the last: Gauss-Newton
-  // from the last answer (a few D1 evaluations) is kept when it converges inside the
-  // surface's bounds to a foot within `near_enough` of the point; otherwise the global
-  // grid search of ValueOfUV (measured: most of detect's time on a B-spline part when
-  // used for every point). A foot that near is the nearest point unless the surface
-  // folds back within that distance of itself.
+  // Projections come in runs, each point near the last: Gauss-Newton from the last
+  // answer (a few D1 evaluations), kept when it converges (within the surface's bounds)
+  // to a foot within `near_enough` of the point; otherwise the global grid search of
+  // ValueOfUV (measured: most of detect's and beautify's time on B-spline parts when
+  // used for every point).
   const gp_Pnt target = pnt(p);
   gp_Pnt2d uv;
   bool found = false;
@@ -203,12 +204,16 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
       const double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
       if (!(det > 1e-300)) break;
       const double ru = su.Dot(r), rv = sv.Dot(r);
-      const double du = (d * ru - b * rv) / det, dv = (a * rv - b * ru) / det;
-      // Clamped to the bounds: boundary points lie on them, and a step may overshoot.
-      u = std::clamp(u + du, c.u0, c.u1);
-      v = std::clamp(v + dv, c.v0, c.v1);
-      if (!std::isfinite(u) || !std::isfinite(v)) break;
-      // Converged: the step moves the point by less than a millionth of near_enough.
+      // Clamped to the bounds: boundary points lie on them, a step may overshoot, and a
+      // point beyond the bounds has its nearest point on them (where the clamped step
+      // vanishes although the residual is not normal to the surface).
+      const double un = std::clamp(u + (d * ru - b * rv) / det, c.u0, c.u1);
+      const double vn = std::clamp(v + (a * rv - b * ru) / det, c.v0, c.v1);
+      if (!std::isfinite(un) || !std::isfinite(vn)) break;
+      const double du = un - u, dv = vn - v;
+      u = un;
+      v = vn;
+      // Converged: the step moves the point by less than a billionth of near_enough.
       if ((du * su + dv * sv).Magnitude() <= 1e-9 * c.near_enough + Precision::Confusion() * 1e-3) {
         found = c.surface->Value(u, v).Distance(target) <= c.near_enough;
         uv = gp_Pnt2d(u, v);

@@ -8,6 +8,7 @@
 // edges' far sides: they are linked into border cycles at the end.
 #include "io/occt/convert.h"
 
+#include "geometry/freeform.h"
 #include "geometry/occt/freeform_occt.h"
 #include "geometry/surface.h"
 #include "geometry/types.h"
@@ -218,6 +219,10 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   if (!r.analytic) {
     // Kept exactly as free-form (our normal is OpenCASCADE's: ∂P/∂u × ∂P/∂v).
     if (std::optional<geo::Surface> ff = keep_freeform(s, face, &r.why)) {
+      // Built now, so that every copy of the surface shares the backend's object and its
+      // projection state (geometry/freeform.h): built lazily on a copy, it would be
+      // rebuilt for every copy.
+      geo::require_freeform().surface_problem(*ff);
       r.analytic = Analytic{std::move(*ff), true};
       return r;
     }
@@ -399,7 +404,11 @@ geo::Curve edge_curve(const TopoDS_Edge& forward, const std::vector<TopoDS_Face>
         part = c;
       }
     }
-    if (std::optional<geo::BSplineCurve> b = geo::occt::to_bspline(part, &why)) return *b;
+    if (std::optional<geo::BSplineCurve> b = geo::occt::to_bspline(part, &why)) {
+      geo::Curve curve(std::move(*b));
+      geo::require_freeform().curve_problem(curve);  // built now: see the surfaces
+      return curve;
+    }
   }
   // Failing that, a polyline within a chordal error proportional to the edge's size.
   BRepAdaptor_Curve ad(forward);
