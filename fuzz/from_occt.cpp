@@ -325,6 +325,8 @@ void check(const TopoDS_Shape& shape) {
     say("refused: " + error.substr(0, error.find('\n')));
     return;
   }
+  say("read, " + std::to_string(warnings.size()) + " warnings");
+  for (const std::string& w : warnings) say("  " + w);
   if (auto bad = check_topology(*body); !bad.empty()) die("from_shape gave a body that breaks " + to_string(bad.front()));
 
   const Counts c = body->counts();
@@ -361,10 +363,11 @@ void check(const TopoDS_Shape& shape) {
         " and " + std::to_string(x.edges));
   if (input_valid && !valid(back->shape)) {
     io::OcctVerdict v = io::occt_check(*body);
-    die("BRepCheck accepts the shape but not its round trip: " + (v.problems.empty() ? "?" : v.problems.front()) +
-        " (" + std::to_string(v.problems.size()) + " problems)");
+    std::string list;
+    for (std::size_t i = 0; i < v.problems.size() && i < 8; ++i) list += "\n  " + v.problems[i];
+    die("BRepCheck accepts the shape but not its round trip (" + std::to_string(v.problems.size()) + " problems):" + list);
   }
-  say(std::string("read and written back") + (warnings.empty() ? "" : ", " + std::to_string(warnings.size()) + " warnings: " + warnings.front()));
+  say("read and written back");
 }
 
 }  // namespace
