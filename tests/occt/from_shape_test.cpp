@@ -6,8 +6,10 @@
 #include "io/occt/exchange.h"
 
 #include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
@@ -21,13 +23,18 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace kintsugi {
 namespace {
 
-TopoDS_Shape placed(const TopoDS_Shape& s, const gp_Dir& axis, double degrees, const gp_Vec& shift) {
+// Turned by `fifteens` × 15° about the axis through the origin, then moved (what
+// fuzz_from_occt does, to the last bit: the booleans are that sensitive).
+TopoDS_Shape placed(const TopoDS_Shape& s, const gp_Dir& axis, int fifteens, const gp_Vec& shift) {
   gp_Trsf turn, move;
-  turn.SetRotation(gp_Ax1(gp::Origin(), axis), degrees * M_PI / 180);
+  if (fifteens != 0) turn.SetRotation(gp_Ax1(gp::Origin(), axis), fifteens * M_PI / 12);
   move.SetTranslation(shift);
   return BRepBuilderAPI_Transform(s, move * turn, Standard_True).Shape();
 }
@@ -55,8 +62,8 @@ double distance_to_edges(const gp_Pnt& p, const TopoDS_Shape& s) {
 // for a deflection of 0.000293, which from_shape recorded as its chordal error; the
 // polyline's tolerance was then too small and BRepCheck refused the round trip.
 TEST(FromShape, PolylineChordsAreWithinTheirChordalError) {
-  TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(15, 12).Shape(), gp::DZ(), 150, gp_Vec(-9, 14.5, 14));
-  TopoDS_Shape box = placed(BRepPrimAPI_MakeBox(31, 26, 29).Shape(), gp_Dir(1, 1, 1), 195, gp_Vec(-19, -4.5, -8));
+  TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(15, 12).Shape(), gp::DZ(), 10, gp_Vec(-9, 14.5, 14));
+  TopoDS_Shape box = placed(BRepPrimAPI_MakeBox(31, 26, 29).Shape(), gp_Dir(1, 1, 1), 13, gp_Vec(-19, -4.5, -8));
   BRepAlgoAPI_Common common(torus, box);
   ASSERT_TRUE(common.IsDone() && !common.HasErrors());
   const TopoDS_Shape shape = common.Shape();
@@ -87,6 +94,53 @@ TEST(FromShape, PolylineChordsAreWithinTheirChordalError) {
   std::string problems;
   for (const std::string& p : v.problems) problems += "\n  " + p;
   EXPECT_TRUE(v.valid) << problems;
+}
+
+std::optional<Body> read(const TopoDS_Shape& shape, std::string* error) {
+  std::vector<std::string> warnings;
+  return io::occt::from_shape(
+      shape, [](const TopoDS_Shape&, int i) { return "face #" + std::to_string(i); }, &warnings, error);
+}
+
+void expect_occt_valid(const Body& b) {
+  io::OcctVerdict v = io::occt_check(b);
+  std::string problems;
+  for (const std::string& p : v.problems) problems += "\n  " + p;
+  EXPECT_TRUE(v.valid) << problems;
+}
+
+// fuzz_from_occt, 2026-12-02 (fuzz/corpus/from_occt/fuse_sphere_torus_hole_across_seam):
+// a thin torus fused with a sphere makes a hole in the sphere's face across its seam,
+// which the hole splits into two seam edges. ShapeFix_Wire::FixShifted put both pcurves
+// of the upper seam on u = 0 (the wire did not close in the parameter plane: BRepCheck
+// NotClosed); to_shape now chains the pcurves itself (to_occt.cpp, chain_pcurves).
+TEST(FromShape, AHoleAcrossASphereSeamWritesBack) {
+  TopoDS_Shape sphere = placed(BRepPrimAPI_MakeSphere(9).Shape(), gp_Dir(1, 2, 3), 13, gp_Vec(4, 15.5, -10));
+  TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(17, 1).Shape(), gp::DZ(), 0, gp_Vec(-12, -5.5, -10));
+  BRepAlgoAPI_Fuse fuse(sphere, torus);
+  ASSERT_TRUE(fuse.IsDone() && !fuse.HasErrors());
+  std::string error;
+  std::optional<Body> b = read(fuse.Shape(), &error);
+  ASSERT_TRUE(b) << error;
+  EXPECT_EQ(b->counts().faces, 2u);
+  expect_occt_valid(*b);
+}
+
+// The same chaining on a sphere with an octant away at a pole (after fuzz/corpus/
+// from_occt/fuse_sphere_box_octant, which fuses the box twice): a pole edge joins a
+// meridian a quarter turn from the seam, and the seam's lower part is used both ways. A
+// first chain_pcurves that chained across pole edges put both of that seam's pcurves on
+// u = 2π on the fuzz input; OpenCASCADE's FixShifted got this one right, so this test
+// guards the rewrite rather than a bug of the original.
+TEST(FromShape, ASphereWithAnOctantAwayWritesBack) {
+  TopoDS_Shape sphere = BRepPrimAPI_MakeSphere(gp_Pnt(-20, -20, -20), 1).Shape();
+  TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, -20), 1, 1, 1).Shape();
+  BRepAlgoAPI_Fuse fuse(sphere, box);
+  ASSERT_TRUE(fuse.IsDone() && !fuse.HasErrors());
+  std::string error;
+  std::optional<Body> b = read(fuse.Shape(), &error);
+  ASSERT_TRUE(b) << error;
+  expect_occt_valid(*b);
 }
 
 }  // namespace
