@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
-#include <filesystem>
 #include <new>
 #include <poll.h>
 #include <sstream>
@@ -83,11 +82,6 @@ namespace {
     return true;
   };
   try {
-    // The test-only switch (tests/cli/): a child reading a file of this name hangs, as
-    // OpenCASCADE does on some corrupt files, so the time bound is tested without one.
-    const char* hang = std::getenv("KINTSUGI_TEST_READ_HANG");
-    if (hang && *hang && std::filesystem::path(path).filename() == hang)
-      for (;;) ::pause();
     std::string error;
     auto imp = io::import_cad(path, f, &error);
     if (!imp) {

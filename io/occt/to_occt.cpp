@@ -18,6 +18,9 @@
 #include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
+#include <TopTools_MapOfShape.hxx>
+#include <Geom_Surface.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_ConicalSurface.hxx>
@@ -301,6 +304,128 @@ class Builder {
     }
   }
 
+  // Puts the wire's pcurves in the periods where they join up in the parameter plane.
+  // ShapeFix projects each edge on its own, so a pcurve can land a period away from its
+  // neighbours, and ShapeFix_Wire::FixShifted moved the two pcurves of a seam split by a
+  // hole across it (fuzz_from_occt) onto one line. Here: the wire is cut into runs at
+  // its pole edges (degenerated, added by FixDegenerated, whose u-extent is free); within
+  // a run each edge is moved by whole periods to start where the one before ends; a seam
+  // edge moves with both its pcurves (orient_seams set them a period apart), so its
+  // second use is already placed, and a run that reaches it in another period is moved
+  // whole. Pole edges are then redrawn from the end before them to the start after them,
+  // and the wire moved so that its middle is in the surface's parameter box.
+  void chain_pcurves(const TopoDS_Wire& w, const TopoDS_Face& face) {
+    Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+    const double up = s->IsUPeriodic() ? s->UPeriod() : 0, vp = s->IsVPeriodic() ? s->VPeriod() : 0;
+    if (up == 0 && vp == 0) return;
+    std::vector<TopoDS_Edge> uses;
+    for (TopoDS_Iterator it(w); it.More(); it.Next()) {
+      double a, b;
+      if (BRep_Tool::CurveOnSurface(TopoDS::Edge(it.Value()), face, a, b).IsNull()) return;
+      uses.push_back(TopoDS::Edge(it.Value()));
+    }
+    const std::size_t n = uses.size();
+    auto ends = [&](const TopoDS_Edge& e, gp_Pnt2d* from, gp_Pnt2d* to) {
+      double a, b;
+      Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, face, a, b);
+      bool fwd = e.Orientation() == TopAbs_FORWARD;
+      *from = c->Value(fwd ? a : b);
+      *to = c->Value(fwd ? b : a);
+    };
+    auto periods = [](double d, double period) { return period > 0 ? period * std::round(d / period) : 0.0; };
+    // Moves the edge's pcurve(s) on the face, both of a seam's.
+    auto shift = [&](const TopoDS_Edge& e, const gp_Vec2d& by) {
+      if (by.Magnitude() == 0) return;
+      const TopoDS_Edge fwd = TopoDS::Edge(e.Oriented(TopAbs_FORWARD)), rev = TopoDS::Edge(e.Oriented(TopAbs_REVERSED));
+      double a, b;
+      Handle(Geom2d_Curve) cf = Handle(Geom2d_Curve)::DownCast(BRep_Tool::CurveOnSurface(fwd, face, a, b)->Copy());
+      cf->Translate(by);
+      if (BRep_Tool::IsClosed(e, face)) {
+        Handle(Geom2d_Curve) cr = Handle(Geom2d_Curve)::DownCast(BRep_Tool::CurveOnSurface(rev, face, a, b)->Copy());
+        cr->Translate(by);
+        bb_.UpdateEdge(fwd, cf, cr, face, BRep_Tool::Tolerance(fwd));
+      } else {
+        bb_.UpdateEdge(fwd, cf, face, BRep_Tool::Tolerance(fwd));
+      }
+      bb_.Range(fwd, face, a, b);  // a new pcurve has no range (a pole edge has no 3D curve to take it from)
+    };
+    // Runs start after a pole edge (or at the first edge when there is none).
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (BRep_Tool::Degenerated(uses[i])) start = (i + 1) % n;
+    TopTools_MapOfShape placed;
+    std::vector<std::size_t> run;
+    auto close_run = [&] {
+      for (std::size_t k : run) placed.Add(uses[k]);
+      run.clear();
+    };
+    gp_Pnt2d last;
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t i = (start + j) % n;
+      const TopoDS_Edge& e = uses[i];
+      if (BRep_Tool::Degenerated(e)) {
+        close_run();
+        continue;
+      }
+      gp_Pnt2d from, to;
+      ends(e, &from, &to);
+      if (run.empty()) {
+        run.push_back(i);
+        last = to;
+        continue;
+      }
+      gp_Vec2d by(periods(last.X() - from.X(), up), periods(last.Y() - from.Y(), vp));
+      bool in_run = false;
+      for (std::size_t k : run) in_run = in_run || uses[k].IsSame(e);
+      if (placed.Contains(e) || in_run) {
+        // Already placed (a seam's second use): move the run so far instead, unless it
+        // holds a seam placed before it.
+        bool fixed = false;
+        for (std::size_t k : run) fixed = fixed || (placed.Contains(uses[k]));
+        if (!fixed && !in_run)
+          for (std::size_t k : run) shift(uses[k], by.Reversed());
+      } else {
+        shift(e, by);
+        to.Translate(by);
+      }
+      run.push_back(i);
+      last = to;
+    }
+    close_run();
+    // Pole edges: from the end before to the start after.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!BRep_Tool::Degenerated(uses[i])) continue;
+      gp_Pnt2d before, after, unused;
+      ends(uses[(i + n - 1) % n], &unused, &before);
+      ends(uses[(i + 1) % n], &after, &unused);
+      if (before.Distance(after) <= Precision::PConfusion()) continue;
+      const bool fwd = uses[i].Orientation() == TopAbs_FORWARD;
+      gp_Pnt2d p = fwd ? before : after, q = fwd ? after : before;
+      Handle(Geom2d_Line) line = new Geom2d_Line(p, gp_Dir2d(gp_Vec2d(p, q)));
+      const TopoDS_Edge e = TopoDS::Edge(uses[i].Oriented(TopAbs_FORWARD));
+      bb_.UpdateEdge(e, line, face, BRep_Tool::Tolerance(e));
+      bb_.Range(e, face, 0, p.Distance(q));
+      bb_.Range(e, 0, p.Distance(q));
+    }
+    // The whole wire into the surface's parameter box.
+    double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300;
+    for (const TopoDS_Edge& e : uses) {
+      gp_Pnt2d from, to;
+      ends(e, &from, &to);
+      for (const gp_Pnt2d& p : {from, to}) {
+        umin = std::min(umin, p.X()), umax = std::max(umax, p.X());
+        vmin = std::min(vmin, p.Y()), vmax = std::max(vmax, p.Y());
+      }
+    }
+    double u0, u1, v0, v1;
+    s->Bounds(u0, u1, v0, v1);
+    gp_Vec2d whole(up > 0 ? -periods(0.5 * (umin + umax) - (u0 + 0.5 * up), up) : 0,
+                   vp > 0 ? -periods(0.5 * (vmin + vmax) - (v0 + 0.5 * vp), vp) : 0);
+    TopTools_MapOfShape moved;
+    for (const TopoDS_Edge& e : uses)
+      if (moved.Add(e)) shift(e, whole);
+  }
+
   // A whole sphere (one loop: its seam both ways) is written to STEP by OpenCASCADE as
   // a face bounded by a vertex only, and read back with the seam OpenCASCADE puts at
   // u = 0. So that the seam comes back where it is, the sphere is written with its x
@@ -365,9 +490,9 @@ class Builder {
       fix.FixShiftedMode() = 0;
       fix.FixEdgeCurves();
       orient_seams(w, tf);
-      fix.FixShifted();
       fix.FixDegenerated();
       w = fix.Wire();
+      chain_pcurves(w, tf);
     }
     for (auto& [l, w] : wires) {
       bb_.Add(tf, w);
