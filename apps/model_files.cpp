@@ -2,6 +2,9 @@
 
 #include "io/native_json.h"
 #include "apps/bounded_read.h"
+#ifdef KINTSUGI_HAVE_OCCT
+#include "geometry/occt/freeform_occt.h"
+#endif
 
 #include <algorithm>
 #include <filesystem>
@@ -48,6 +51,12 @@ std::string formats_supported() {
 }
 
 std::optional<Model> load_model(const std::string& path, std::string* error) {
+#ifdef KINTSUGI_HAVE_OCCT
+  // Free-form faces (a .json holding them, or the native document a bounded STEP/BREP
+  // read hands back) need the backend in this process too: the Python package and batch
+  // load models without going through run_kintsugi.
+  geo::occt::register_freeform_backend();
+#endif
   auto fmt = format_of(path, error);
   if (!fmt) return std::nullopt;
   if (*fmt == "json") {

@@ -192,7 +192,16 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
       break;
     }
   }
-  if ((r.analytic = elementary(s))) return r;
+  // A self-intersecting (spindle) torus, minor radius not below the major one, is no
+  // torus kintsugi represents (spec/file-format.md): kept as the B-spline it converts to.
+  auto representable = [](const std::optional<Analytic>& a) {
+    if (!a) return false;
+    if (const auto* t = std::get_if<geo::Torus>(&a->surface)) return t->minor_radius < t->major_radius;
+    return true;
+  };
+  if ((r.analytic = elementary(s)) && representable(r.analytic)) return r;
+  const bool spindle = r.analytic.has_value();
+  r.analytic.reset();
   // Free-form: planar, or analytic, within the face's precision.
   double tol = std::max(1e-6, BRep_Tool::Tolerance(face));
   r.type = occt_surface_name(s);
@@ -217,9 +226,10 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
     }
   }
   if (!ana.IsNull()) r.analytic = elementary(ana);
+  if (!representable(r.analytic)) r.analytic.reset();
   if (!r.analytic) {
     // Kept exactly as free-form (our normal is OpenCASCADE's: ∂P/∂u × ∂P/∂v).
-    if (std::optional<geo::Surface> ff = keep_freeform(s, face, &r.why)) {
+    if (std::optional<geo::Surface> ff = keep_freeform(spindle && !freeform.IsNull() ? freeform : s, face, &r.why)) {
       // Built now, so that every copy of the surface shares the backend's object and its
       // projection state (geometry/freeform.h): built lazily on a copy, it would be
       // rebuilt for every copy.
@@ -494,6 +504,8 @@ constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
 std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& locate, std::vector<std::string>* warnings,
                                std::string* error) {
+  // Free-form faces need the backend (geometry/freeform.h): whoever converts a shape gets it.
+  geo::occt::register_freeform_backend();
   std::vector<std::string> local_warnings;
   if (!warnings) warnings = &local_warnings;
   std::string local_error;

@@ -565,6 +565,7 @@ class Builder {
 }  // namespace
 
 std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only) {
+  geo::occt::register_freeform_backend();  // as in from_shape
   std::string local;
   if (!error) error = &local;
   try {
