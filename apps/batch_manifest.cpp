@@ -18,7 +18,7 @@ namespace {
 bool is_model_file(const fs::path& p) {
   std::string e = p.extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e == ".step" || e == ".stp" || e == ".brep" || e == ".json";
+  return e == ".step" || e == ".stp" || e == ".iges" || e == ".igs" || e == ".brep" || e == ".json";
 }
 
 const char* const kStatuses[] = {"repaired", "partly_repaired", "unchanged", "failed", "timeout", "crashed"};

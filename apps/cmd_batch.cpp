@@ -27,7 +27,7 @@ using clock = std::chrono::steady_clock;
 const char* kHelp =
     "usage: kintsugi batch IN_DIR OUT_DIR [--tol T | --tol-from-meta] [--jobs N] [--timeout S]\n"
     "                      [--max-memory M] [--resume] [--manifest FILE] [--shard I/N]\n\n"
-    "Beautifies every .step/.stp/.brep/.json under IN_DIR (recursively) into the same\n"
+    "Beautifies every .step/.stp/.iges/.igs/.brep/.json under IN_DIR (recursively) into the same\n"
     "relative path under OUT_DIR, each file in its own child process: a crash, hang or\n"
     "memory blow-up in one file (inside OpenCASCADE's reader too) costs that file only and\n"
     "is recorded as such. A progress bar on a terminal, one line per file otherwise.\n\n"
