@@ -347,6 +347,11 @@ bool write_iges(const TopoDS_Shape& shape, const std::string& path, const std::s
   IGESControl_Controller::Init();
   // BRep mode (faces, shells and solids as MSBO entities 186/514/510): the topology is
   // written as it is, not as unconnected trimmed surfaces.
+  const int previous_mode = Interface_Static::IVal("write.iges.brep.mode");
+  struct Restore {
+    int mode;
+    ~Restore() { Interface_Static::SetIVal("write.iges.brep.mode", mode); }
+  } restore{previous_mode};
   Interface_Static::SetIVal("write.iges.brep.mode", 1);
   Interface_Static::SetCVal("xstep.cascade.unit", unit->step_name);
   IGESControl_Writer writer(unit->step_name, 1);
@@ -364,6 +369,13 @@ bool write_step(const TopoDS_Shape& shape, const std::string& path, const std::s
   if (!unit) return fail(error, "unknown length unit '" + units + "' (mm, cm, m, km, um, in, ft, mi, mil, uin)");
   std::lock_guard<std::mutex> lock(step_mutex());
   STEPControl_Writer writer;
+  // Process-wide: put back what it was, so that a later STEP write in this process
+  // (another library's, a test's) is not written in our unit.
+  const std::string previous_unit = Interface_Static::CVal("write.step.unit");
+  struct Restore {
+    const std::string& unit;
+    ~Restore() { Interface_Static::SetCVal("write.step.unit", unit.c_str()); }
+  } restore{previous_unit};
   Interface_Static::SetCVal("write.step.unit", unit->step_name);
   // Our coordinates are already in `units`: local and written unit are the same, so
   // nothing is scaled.

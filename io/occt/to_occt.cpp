@@ -54,6 +54,7 @@
 #include <gp_Pnt2d.hxx>
 #include <gp_Vec2d.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -186,6 +187,12 @@ std::optional<EdgeCurve> to_geom(const geo::Curve& c, const Vec3& p0, const Vec3
     if (closed && !bs->IsPeriodic()) {
       out.t0 = bs->FirstParameter();
       out.t1 = bs->LastParameter();
+    }
+    if (!bs->IsPeriodic()) {
+      // A vertex's projection can land a rounding error beyond the curve's ends, which
+      // Geom_BSplineCurve refuses ("parameter out of range": hammer.brep of occt-misc).
+      out.t0 = std::clamp(out.t0, bs->FirstParameter(), bs->LastParameter());
+      out.t1 = std::clamp(out.t1, bs->FirstParameter(), bs->LastParameter());
     }
     if (out.t1 < out.t0) {
       out.t0 = bs->ReversedParameter(out.t0);
