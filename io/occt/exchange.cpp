@@ -244,6 +244,18 @@ bool brep_complete(const std::string& path, std::string* why) {
   return true;
 }
 
+// `out` with the body converted from `shape` (faces named by their index in the file),
+// or the conversion's refusal naming `path`.
+std::optional<CadImport> with_body(const TopoDS_Shape& shape, const std::string& path, CadImport out,
+                                   std::string* error) {
+  occt::FaceLocator locate = [](const TopoDS_Shape&, int index) { return "face #" + std::to_string(index); };
+  std::string why;
+  std::optional<Body> body = occt::from_shape(shape, locate, &out.warnings, &why);
+  if (!body) return fail(error, path + ": " + why), std::nullopt;
+  out.body = std::move(*body);
+  return out;
+}
+
 std::optional<CadImport> import_brep(const std::string& path, std::string* error) {
   std::string head, tail;
   if (!check_file(path, &head, &tail, error)) return std::nullopt;
@@ -256,13 +268,7 @@ std::optional<CadImport> import_brep(const std::string& path, std::string* error
   if (!BRepTools::Read(shape, path.c_str(), bb) || shape.IsNull())
     return fail(error, path + ": the BREP file is truncated or corrupt (OpenCASCADE could not read a shape)"),
            std::nullopt;
-  CadImport out;  // BREP files carry no unit: millimetres by convention
-  occt::FaceLocator locate = [](const TopoDS_Shape&, int index) { return "face #" + std::to_string(index); };
-  std::string why;
-  std::optional<Body> body = occt::from_shape(shape, locate, &out.warnings, &why);
-  if (!body) return fail(error, path + ": " + why), std::nullopt;
-  out.body = std::move(*body);
-  return out;
+  return with_body(shape, path, CadImport{}, error);  // BREP files carry no unit: millimetres by convention
 }
 
 // IGES global-section unit flags (IGES 5.3, section 2.2.4.3, parameter 14).
@@ -332,12 +338,7 @@ std::optional<CadImport> import_iges(const std::string& path, std::string* error
   // tolerance is the file's resolution, at least 1e-6 of the file's unit).
   double resolution = model.IsNull() ? 1e-6 : std::max(1e-6, model->GlobalSection().Resolution());
   shape = occt::sew_faces(shape, resolution, &out.warnings);
-  occt::FaceLocator locate = [](const TopoDS_Shape&, int index) { return "face #" + std::to_string(index); };
-  std::string why;
-  std::optional<Body> body = occt::from_shape(shape, locate, &out.warnings, &why);
-  if (!body) return fail(error, path + ": " + why), std::nullopt;
-  out.body = std::move(*body);
-  return out;
+  return with_body(shape, path, std::move(out), error);
 }
 
 bool write_iges(const TopoDS_Shape& shape, const std::string& path, const std::string& units, std::string* error) {
