@@ -2,6 +2,7 @@
 
 #include "apps/report_json.h"
 #include "apps/tolerance_choice.h"
+#include "invariants/region_validity.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
 #include "repair/suggest_tolerance.h"
@@ -52,6 +53,11 @@ nlohmann::json beautify_timed(Model& m, std::optional<double> tol, const Beautif
     // The validity gate also asks OpenCASCADE about every repaired region: the model must
     // still convert, and BRepCheck must pass where it passed on the input.
     io::register_occt_region_check(io::occt_check(m.body).valid);
+    // Registered for this beautify only: the next caller in this process (the Python
+    // package, batch) registers its own input's verdict.
+    struct Unregister {
+      ~Unregister() { set_external_region_check(nullptr); }
+    } unregister;
 #endif
     r = kintsugi::beautify(m.body, choice.tol, o);
     m.meta["tolerance"] = choice.tol.length;
