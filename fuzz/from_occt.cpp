@@ -132,36 +132,22 @@ TopoDS_Shape primitive(Bytes& in) {
 }
 
 // A boolean's result, or a null shape when it failed.
-TopoDS_Shape boolean(unsigned op, const TopoDS_Shape& a, const TopoDS_Shape& b) {
-  auto result = [](BRepAlgoAPI_BooleanOperation& o) {
-    o.Build();
-    return o.IsDone() && !o.HasErrors() ? o.Shape() : TopoDS_Shape();
-  };
-  if (op == 0) {
-    BRepAlgoAPI_Fuse o;
-    TopTools_ListOfShape args, tools;
-    args.Append(a);
-    tools.Append(b);
-    o.SetArguments(args);
-    o.SetTools(tools);
-    return result(o);
-  }
-  if (op == 1) {
-    BRepAlgoAPI_Cut o;
-    TopTools_ListOfShape args, tools;
-    args.Append(a);
-    tools.Append(b);
-    o.SetArguments(args);
-    o.SetTools(tools);
-    return result(o);
-  }
-  BRepAlgoAPI_Common o;
+template <class Operation>
+TopoDS_Shape run_boolean(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  Operation o;
   TopTools_ListOfShape args, tools;
   args.Append(a);
   tools.Append(b);
   o.SetArguments(args);
   o.SetTools(tools);
-  return result(o);
+  o.Build();
+  return o.IsDone() && !o.HasErrors() ? o.Shape() : TopoDS_Shape();
+}
+
+TopoDS_Shape boolean(unsigned op, const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  if (op == 0) return run_boolean<BRepAlgoAPI_Fuse>(a, b);
+  if (op == 1) return run_boolean<BRepAlgoAPI_Cut>(a, b);
+  return run_boolean<BRepAlgoAPI_Common>(a, b);
 }
 
 // The shape the bytes describe, or a null shape when OpenCASCADE could not build it.
