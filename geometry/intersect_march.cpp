@@ -94,6 +94,20 @@ class Marcher {
     return t.normalized();
   }
 
+  // Appends projected midpoints between p (already in `out`) and q (not appended) until
+  // every chord's midpoint is within the chordal error of the curve; false when a
+  // midpoint does not project.
+  bool close_chord(const Vec3& p, const Vec3& q, std::vector<Vec3>& out, int depth) const {
+    Vec3 mid = 0.5 * (p + q);
+    const Vec3 chord_mid = mid;
+    if (!project(mid)) return false;
+    if ((mid - chord_mid).norm() <= o_.chordal_error) return true;
+    if (depth == 0) return false;
+    if (!close_chord(p, mid, out, depth - 1)) return false;
+    out.push_back(mid);
+    return close_chord(mid, q, out, depth - 1);
+  }
+
   bool inside(const Vec3& x) const { return o_.region.empty() || o_.region.contains(x); }
 
   std::vector<Vec3> seeds() const {
@@ -157,6 +171,14 @@ class Marcher {
       if (pts.size() >= 3) {
         const ClosestPair c = point_segment(seed, x, y);
         if (c.distance <= cover_ && c.t > 0) {
+          // The closing chord x–seed is not the chord x–y checked above: bring it
+          // within the chordal error too.
+          const std::size_t before = pts.size();
+          if (!close_chord(x, seed, pts, 8)) {
+            pts.resize(before);
+            h /= 2;
+            continue;
+          }
           pts.push_back(seed);
           closed = true;
           return pts;

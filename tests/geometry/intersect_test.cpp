@@ -162,6 +162,26 @@ TEST(Intersect, MarchedCylinderSphereIsClosedAndAccurate) {
   EXPECT_NEAR(len, 15.280657, 1e-3);
 }
 
+// Found by IntersectProperty.ResultsLieOnBothSurfaces (seed 11793436241069101196): a
+// branch that closes on its seed ended with a chord to the seed that had not been checked
+// against the chordal error (its midpoint was 1.0025e-4 off a surface for 1e-4).
+TEST(Intersect, MarchedLoopClosesWithinTheChordalError) {
+  // Exactly the counterexample's surfaces (frames as origin, x, z).
+  const Cone a{Frame{Vec3(-2.3173046112060547, -4.7108364105224609, -0.51647186279296875),
+                     Vec3(-0.020758324876150317, -0.074740824740374467, -0.99698691118061566),
+                     Vec3(-0.26680144976983095, -0.96062473810858173, 0.077569961547851576)},
+               1.6601853370666504, -0.61453742980957027};
+  const Cone b{Frame{Vec3(-3.7053680419921875, -2.6183795928955078, -0.19268035888671875),
+                     Vec3(-0.97725338194894096, -0.208161949808335, -0.040551573598931044),
+                     Vec3(0.10131855698581117, -0.29028651801285582, -0.95156097412109375)},
+               1.1020426750183105, -0.41521568298339845};
+  const IntersectOptions o = options(6.0);
+  const SurfaceIntersection r = intersect_surfaces(a, b, o);
+  EXPECT_TRUE(r.marched);
+  ASSERT_FALSE(r.curves.empty());
+  EXPECT_LT(worst_deviation(r.curves, a, b, o.region), 1e-7);
+}
+
 TEST(Intersect, SelectBranchPicksTheNearestBoth) {
   const std::vector<Curve> curves{Line{Vec3(0, 0, 0), Vec3::UnitX()}, Line{Vec3(0, 1, 0), Vec3::UnitX()}};
   const auto b = select_branch(curves, Vec3(0, 1.1, 0), Vec3(5, 0.9, 0));
