@@ -171,7 +171,11 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
     if (n > 0) out.centroid /= double(n);
     return out;
   }
-  add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);
+  const bool fast = o.area_and_bounds_only;
+  // Ruled surfaces in the fast mode: whole domain triangles (no grid), bounds from the boundary.
+  const Cone* cone = std::get_if<Cone>(&s);
+  const bool ruled = fast && (std::holds_alternative<Plane>(s) || std::holds_alternative<Cylinder>(s) || cone);
+  if (!ruled) add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);
   mark_domains(cdt);
 
   const Rule& rule = radon7();
@@ -185,17 +189,18 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
   double area = 0.0;
   Vec3 moment = Vec3::Zero();
   const double step = o.max_angle_step > 0 ? o.max_angle_step : 0.05;
-  for (CDT::Face_handle f : cdt.finite_face_handles()) {
-    if (!f->info().in_domain()) continue;
-    std::array<Vec2, 3> t;
-    for (int i = 0; i < 3; ++i) t[i] = Vec2(f->vertex(i)->point().x(), f->vertex(i)->point().y());
-    const int n = std::max(1, static_cast<int>(std::ceil(angular_extent(s, t[0], t[1], t[2]) / step)));
-    // Regular n×n split of the triangle: grid point (i, j) = t0 + i/n (t1 - t0) + j/n (t2 - t0).
+  // Regular n×n split of the triangle: grid point (i, j) = t0 + i/n (t1 - t0) + j/n (t2 - t0).
+  auto split_regular = [&](const std::array<Vec2, 3>& t, int n) {
     const int base = static_cast<int>(out.mesh.vertices.size());
     auto grid = [&](int i, int j) { return t[0] + (double(i) / n) * (t[1] - t[0]) + (double(j) / n) * (t[2] - t[0]); };
     auto index = [&](int i, int j) { return base + i * (n + 1) - i * (i - 1) / 2 + j; };  // rows of shrinking length
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n - i; ++j) out.mesh.vertices.push_back(evaluate(s, grid(i, j)));
+    if (!ruled)
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n - i; ++j) {
+          const Vec3 p = evaluate(s, grid(i, j));
+          if (fast) out.bounds.add(p);
+          else out.mesh.vertices.push_back(p);
+        }
     const bool flip = orientation((t[0] + t[1] + t[2]) / 3) < 0;
     auto piece = [&](const Vec2& a, const Vec2& b, const Vec2& c, int ia, int ib, int ic) {
       const double jac = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
@@ -203,9 +208,9 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
         const Vec2 uv = rule.bary[q][0] * a + rule.bary[q][1] * b + rule.bary[q][2] * c;
         const double w = rule.weight[q] * jac * area_element(s, uv);
         area += w;
-        moment += w * evaluate(s, uv);
+        if (!fast) moment += w * evaluate(s, uv);
       }
-      out.mesh.triangles.push_back(flip ? std::array<int, 3>{ia, ic, ib} : std::array<int, 3>{ia, ib, ic});
+      if (!fast) out.mesh.triangles.push_back(flip ? std::array<int, 3>{ia, ic, ib} : std::array<int, 3>{ia, ib, ic});
     };
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n - i; ++j) {
@@ -214,9 +219,66 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
           piece(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1), index(i + 1, j), index(i + 1, j + 1),
                 index(i, j + 1));
       }
+  };
+  for (CDT::Face_handle f : cdt.finite_face_handles()) {
+    if (!f->info().in_domain()) continue;
+    std::array<Vec2, 3> t;
+    for (int i = 0; i < 3; ++i) t[i] = Vec2(f->vertex(i)->point().x(), f->vertex(i)->point().y());
+    // Pieces: no angular parameter may vary by more than `step` across one. Where u alone
+    // is angular (cylinders, cones) the triangle is halved at the midpoint of its side
+    // longest in u until it is that narrow: about 2·extent/step pieces. A regular n×n split
+    // (n = ⌈extent/step⌉) costs n² even for a sliver with one long side, and the CDT makes
+    // many of those between a boundary and a distant grid row (one cylinder face of
+    // OpenCASCADE's Bottom.brep: 31 million pieces, 12 s). Spheres and tori keep the
+    // regular split: their grid is square in (u, v), so their triangles are not slivers,
+    // and halving the fans at a pole makes needles whose flat triangles turn inside out
+    // (Area.TessellationCoversTheRegion).
+    const bool halve = !std::holds_alternative<Sphere>(s) && !std::holds_alternative<Torus>(s);
+    if (ruled) {
+      // A cone's triangle reaching across the apex has |area element| kinked inside it:
+      // split as usual there.
+      const double apex = cone ? apex_parameter(*cone) : 0.0;
+      const bool across_apex = cone && std::min({t[0].y(), t[1].y(), t[2].y()}) < apex &&
+                               std::max({t[0].y(), t[1].y(), t[2].y()}) > apex;
+      if (!across_apex) {
+        split_regular(t, 1);
+        continue;
+      }
+    }
+    std::vector<std::array<Vec2, 3>> stack{t};
+    while (!stack.empty()) {
+      const std::array<Vec2, 3> k = stack.back();
+      stack.pop_back();
+      const double extent = angular_extent(s, k[0], k[1], k[2]);
+      if (halve && std::isfinite(extent) && extent > step) {
+        // Side i runs from k[i] to k[(i+1)%3].
+        int longest = 0;
+        double widest = -1;
+        for (int i = 0; i < 3; ++i) {
+          const double e = angular_extent(s, k[i], k[(i + 1) % 3], k[(i + 1) % 3]);
+          if (e > widest) widest = e, longest = i;
+        }
+        const Vec2 &a = k[longest], &b = k[(longest + 1) % 3], &o = k[(longest + 2) % 3];
+        const Vec2 m = 0.5 * (a + b);
+        stack.push_back({a, m, o});  // both halves keep the triangle's orientation
+        stack.push_back({m, b, o});
+        continue;
+      }
+      split_regular(k, std::max(1, static_cast<int>(std::ceil(extent / step))));
+    }
   }
   out.area = area;
-  out.centroid = area > 0 ? Vec3(moment / area) : Vec3::Zero();
+  out.centroid = area > 0 && !fast ? Vec3(moment / area) : Vec3::Zero();
+  if (cone && ruled) {
+    // The apex, where the region reaches it (it is on no boundary sample).
+    const double apex = apex_parameter(*cone);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (CDT::Face_handle f : cdt.finite_face_handles())
+      if (f->info().in_domain())
+        for (int i = 0; i < 3; ++i) lo = std::min(lo, f->vertex(i)->point().y()), hi = std::max(hi, f->vertex(i)->point().y());
+    const double slack = 1e-9 * (hi - lo + std::abs(apex) + 1);
+    if (lo <= apex + slack && hi >= apex - slack) out.bounds.add(evaluate(s, Vec2(0.0, apex)));
+  }
   for (const Vec3& v : out.mesh.vertices) out.bounds.add(v);
   for (const auto& loop : loops)
     for (const Vec3& p : loop) out.bounds.add(p);

@@ -36,6 +36,14 @@ struct Tessellation {
 struct AreaOptions {
   bool reversed = false;         // loops are oriented against the surface normal
   double max_angle_step = 0.05;  // radians, see above
+  // Only the area and the bounds are wanted (detection's small faces and slivers): no
+  // tessellation is kept and the centroid is not computed (left zero). On planes,
+  // cylinders and cones each domain triangle is then integrated whole — the area element
+  // is at most linear in the parameters there, so the rule is exact — and the bounds are
+  // the boundary's: each ruling meets the region in segments that end on its boundary (or
+  // at a cone's apex, added when the region reaches it), so the region lies in the
+  // boundary's convex hull.
+  bool area_and_bounds_only = false;
 };
 
 struct RegionMeasure {

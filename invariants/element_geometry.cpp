@@ -58,9 +58,10 @@ std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double
   return loops;
 }
 
-geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal) {
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only) {
   geo::AreaOptions o;
   o.reversed = !b.same_sense(f);
+  o.area_and_bounds_only = area_and_bounds_only;
   return geo::measure_region(b.surface(f), face_boundary(b, f, chordal), o);
 }
 
@@ -76,7 +77,7 @@ std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double
     }
     if (r.area > 0 && std::isfinite(r.area)) return r;
   }
-  geo::RegionMeasure m = face_measure(b, f, chordal);
+  geo::RegionMeasure m = face_measure(b, f, chordal, /*area_and_bounds_only=*/true);
   if (!m.ok()) return std::nullopt;
   return AreaAndBounds{m.area, m.bounds};
 }
@@ -134,7 +135,7 @@ geo::Box body_bounds(const Body& b) {
   for (FaceH f : b.faces()) {
     std::optional<geo::Box> whole = closed_surface_box(b.surface(f));
     if (!whole || (!box.empty() && box.contains(whole->min) && box.contains(whole->max))) continue;
-    geo::RegionMeasure m = face_measure(b, f, kSizeChordalRatio * std::max(size, whole->diagonal()));
+    geo::RegionMeasure m = face_measure(b, f, kSizeChordalRatio * std::max(size, whole->diagonal()), true);
     const geo::Box& add = m.ok() && !m.bounds.empty() ? m.bounds : *whole;
     box.add(add.min);
     box.add(add.max);

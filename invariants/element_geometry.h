@@ -21,12 +21,15 @@ std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chor
 double edge_length(const Body& b, EdgeH e);
 // The face's loops as closed polylines (outer first), for geo::measure_region.
 std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal);
-// Area, centroid, bounding box and tessellation of a face; `problem` says why not.
-geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal);
+// Area, centroid, bounding box and tessellation of a face; `problem` says why not. With
+// `area_and_bounds_only`, no tessellation or centroid (geo::AreaOptions says how that
+// is cheaper).
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only = false);
 // Only the area and bounding box: for a planar face, from its boundary polylines alone
 // (the signed areas of its loops about its outward normal; no triangulation, which is
-// what makes measuring a large model costly); otherwise face_measure's. nullopt where
-// face_measure reports a problem or the loops do not enclose a positive area.
+// what makes measuring a large model costly); otherwise face_measure's area and bounds
+// only. nullopt where face_measure reports a problem or the loops do not enclose a
+// positive area.
 struct AreaAndBounds {
   double area;
   geo::Box bounds;

@@ -54,7 +54,7 @@ std::vector<FaceH> faces_around(const Body& b, VertexH v) {
 }
 
 double face_area(const Body& b, FaceH f, const geo::Tolerances& tol) {
-  geo::RegionMeasure m = face_measure(b, f, tol.measure_chordal());
+  geo::RegionMeasure m = face_measure(b, f, tol.measure_chordal(), /*area_and_bounds_only=*/true);
   return m.ok() ? m.area : HUGE_VAL;
 }
 

@@ -17,24 +17,29 @@ bad() { fail=$((fail + 1)); echo "FAIL: $1"; }
 before=$(md5sum <"$dir/in.json")
 
 # Starts beautify, waits for its temporary output to appear and grow past `min_bytes`,
-# then kills it with SIGKILL. Prints "killed" or "finished".
+# then kills it with SIGKILL. Prints "killed" or "finished". The watching is Python's
+# (a stat every half millisecond, no process per look): a shell loop forking `stat` was
+# too slow to see the write on a loaded machine (ctest -j2), and beautify finished first.
 kill_while_writing() {
-  local min_bytes=$1
-  "$K" beautify "$dir/in.json" -o "$dir/out.json" >/dev/null 2>&1 &
-  local pid=$!
-  while kill -0 "$pid" 2>/dev/null; do
-    for f in "$dir"/.out.json.tmp-*; do
-      if [ -e "$f" ] && [ "$(stat -c %s "$f" 2>/dev/null || echo 0)" -ge "$min_bytes" ]; then
-        kill -KILL "$pid" 2>/dev/null
-        wait "$pid" 2>/dev/null
-        echo killed
-        return
-      fi
-    done
-    sleep 0.002
-  done
-  wait "$pid" 2>/dev/null
-  echo finished
+  python3 - "$K" "$dir" "$1" <<'PY'
+import glob, os, signal, subprocess, sys, time
+k, d, min_bytes = sys.argv[1], sys.argv[2], int(sys.argv[3])
+p = subprocess.Popen([k, "beautify", d + "/in.json", "-o", d + "/out.json"],
+                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+while p.poll() is None:
+    for f in glob.glob(d + "/.out.json.tmp-*"):
+        try:
+            size = os.stat(f).st_size
+        except FileNotFoundError:
+            continue
+        if size >= min_bytes:
+            p.send_signal(signal.SIGKILL)
+            p.wait()
+            print("killed")
+            sys.exit(0)
+    time.sleep(0.0005)
+print("finished")
+PY
 }
 
 # 1. No output yet: killed at the first bytes, and again after about 2 MB.

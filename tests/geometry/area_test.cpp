@@ -220,5 +220,43 @@ RC_GTEST_PROP(AreaProperty, SplittingARegionAddsUp, ()) {
   RC_ASSERT(std::abs(left + right - whole) <= 1e-9 * whole);
 }
 
+// The fast mode (detection's) gives the full measure's area and bounds: on ruled surfaces
+// it integrates whole domain triangles and takes the boundary's bounds, elsewhere it only
+// drops the tessellation. Random patches of every surface type, bent boundaries included
+// (a patch whose sides are not parameter lines: a quadrilateral with a random skew).
+RC_GTEST_PROP(AreaProperty, AreaAndBoundsOnlyAgreeWithTheFullMeasure, ()) {
+  const Surface s = testing::gen_any_surface();
+  const double u0 = gen_real(-3.0, 3.0), du = gen_real(0.1, 6.0), skew = gen_real(-1.0, 1.0);
+  double v0 = gen_real(-1.0, 0.5), dv = gen_real(0.1, 1.0);
+  // On a cone the whole patch stays on one side of the apex, skew included.
+  if (const auto* k = std::get_if<Cone>(&s)) v0 = apex_parameter(*k) + std::max(0.0, -skew) * dv + gen_real(0.2, 1.0);
+  const std::vector<std::vector<Vec3>> loops{
+      loop(s, {Vec2(u0, v0), Vec2(u0 + du, v0 + skew * dv), Vec2(u0 + du, v0 + dv + skew * dv), Vec2(u0, v0 + dv)})};
+  AreaOptions fast;
+  fast.area_and_bounds_only = true;
+  const RegionMeasure a = measure_region(s, loops), b = measure_region(s, loops, fast);
+  RC_ASSERT(a.ok());
+  RC_ASSERT(b.ok());
+  RC_ASSERT(b.mesh.triangles.empty());
+  RC_ASSERT(std::abs(a.area - b.area) <= 1e-9 * a.area);
+  // The full measure's bounds come from flat triangles a hair inside the surface.
+  const double slack = 1e-3 * a.bounds.diagonal();
+  RC_ASSERT((a.bounds.min - b.bounds.min).cwiseAbs().maxCoeff() <= slack);
+  RC_ASSERT((a.bounds.max - b.bounds.max).cwiseAbs().maxCoeff() <= slack);
+}
+
+TEST(Area, AreaAndBoundsOnlyReachesTheConeApex) {
+  const Cone k{Frame{}, 1.0, 0.5};
+  AreaOptions fast;
+  fast.area_and_bounds_only = true;
+  const RegionMeasure cap = measure_region(k, {parallel(k, 0, 1)}, fast);
+  ASSERT_TRUE(cap.ok());
+  const double slant = 1.0 / std::sin(0.5);
+  EXPECT_NEAR(cap.area, kPi * slant, kPi * slant * 1e-12);
+  // The apex lies below the boundary circle: the bounds reach it.
+  const Vec3 apex = evaluate(k, Vec2(0, apex_parameter(k)));
+  EXPECT_NEAR(cap.bounds.min.z(), apex.z(), 1e-12);
+}
+
 }  // namespace
 }  // namespace kintsugi::geo
