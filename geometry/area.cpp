@@ -220,20 +220,20 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
                 index(i, j + 1));
       }
   };
+  // Pieces: no angular parameter may vary by more than `step` across one. Where u alone
+  // is angular (cylinders, cones) the triangle is halved at the midpoint of its side
+  // longest in u until it is that narrow: about 2·extent/step pieces. A regular n×n split
+  // (n = ⌈extent/step⌉) costs n² even for a sliver with one long side, and the CDT makes
+  // many of those between a boundary and a distant grid row (one cylinder face of
+  // OpenCASCADE's Bottom.brep: 31 million pieces, 12 s). Spheres and tori keep the
+  // regular split: their grid is square in (u, v), so their triangles are not slivers,
+  // and halving the fans at a pole makes needles whose flat triangles turn inside out
+  // (Area.TessellationCoversTheRegion).
+  const bool halve = !std::holds_alternative<Sphere>(s) && !std::holds_alternative<Torus>(s);
   for (CDT::Face_handle f : cdt.finite_face_handles()) {
     if (!f->info().in_domain()) continue;
     std::array<Vec2, 3> t;
     for (int i = 0; i < 3; ++i) t[i] = Vec2(f->vertex(i)->point().x(), f->vertex(i)->point().y());
-    // Pieces: no angular parameter may vary by more than `step` across one. Where u alone
-    // is angular (cylinders, cones) the triangle is halved at the midpoint of its side
-    // longest in u until it is that narrow: about 2·extent/step pieces. A regular n×n split
-    // (n = ⌈extent/step⌉) costs n² even for a sliver with one long side, and the CDT makes
-    // many of those between a boundary and a distant grid row (one cylinder face of
-    // OpenCASCADE's Bottom.brep: 31 million pieces, 12 s). Spheres and tori keep the
-    // regular split: their grid is square in (u, v), so their triangles are not slivers,
-    // and halving the fans at a pole makes needles whose flat triangles turn inside out
-    // (Area.TessellationCoversTheRegion).
-    const bool halve = !std::holds_alternative<Sphere>(s) && !std::holds_alternative<Torus>(s);
     if (ruled) {
       // A cone's triangle reaching across the apex has |area element| kinked inside it:
       // split as usual there.
