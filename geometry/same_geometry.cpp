@@ -11,10 +11,12 @@
 namespace kintsugi::geo {
 
 double surface_deviation(const Surface& a, const Surface& b, const std::vector<Vec3>& samples_a,
-                         const std::vector<Vec3>& samples_b) {
+                         const std::vector<Vec3>& samples_b, double enough) {
   double worst = 0.0;
-  for (const Vec3& p : samples_a) worst = std::max(worst, std::abs(signed_distance(b, p)));
-  for (const Vec3& q : samples_b) worst = std::max(worst, std::abs(signed_distance(a, q)));
+  for (const Vec3& p : samples_a)
+    if ((worst = std::max(worst, std::abs(signed_distance(b, p)))) > enough) return worst;
+  for (const Vec3& q : samples_b)
+    if ((worst = std::max(worst, std::abs(signed_distance(a, q)))) > enough) return worst;
   return worst;
 }
 

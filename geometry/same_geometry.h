@@ -14,17 +14,23 @@
 
 #include "geometry/types.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace kintsugi::geo {
 
+// With `enough`, stops at the first sample farther than that and returns its distance (a
+// lower bound, more than `enough`): all a caller comparing against `enough` needs. Each
+// distance to a free-form surface is a projection, often a global search, so a pair of
+// unlike B-spline faces is told apart by one sample instead of all of them.
 double surface_deviation(const Surface& a, const Surface& b, const std::vector<Vec3>& samples_a,
-                         const std::vector<Vec3>& samples_b);
+                         const std::vector<Vec3>& samples_b,
+                         double enough = std::numeric_limits<double>::infinity());
 
 inline bool same_geometry(const Surface& a, const Surface& b, const std::vector<Vec3>& samples_a,
                           const std::vector<Vec3>& samples_b, double length_tolerance) {
-  return surface_deviation(a, b, samples_a, samples_b) <= length_tolerance;
+  return surface_deviation(a, b, samples_a, samples_b, length_tolerance) <= length_tolerance;
 }
 
 struct SurfaceFit {

@@ -328,8 +328,8 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     // a face with thousands of rings (a plate under its bosses) is first compared on a
     // few of its points, and only pairs that pass are compared on all of them. Without
     // this, every neighbour of such a face paid for all its samples: quadratic.
-    if (geo::surface_deviation(b.surface(f1), b.surface(f2), coarse(f1), coarse(f2)) > c.tol.length) continue;
-    double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2));
+    if (geo::surface_deviation(b.surface(f1), b.surface(f2), coarse(f1), coarse(f2), c.tol.length) > c.tol.length) continue;
+    double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2), c.tol.length);
     if (dev <= c.tol.length) {
       Problem p;
       p.type = ProblemType::same_geometry_faces;

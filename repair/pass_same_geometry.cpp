@@ -44,7 +44,7 @@ std::string repair_same_geometry(RepairContext& c) {
   auto common = common_edges(b, f, g);
   if (common.empty()) return f.str() + " and " + g.str() + " are no longer adjacent";
   std::vector<geo::Vec3> pts = samples(b, f, c.tol), pg = samples(b, g, c.tol);
-  if (geo::surface_deviation(b.surface(f), b.surface(g), pts, pg) > c.tol.length)
+  if (geo::surface_deviation(b.surface(f), b.surface(g), pts, pg, c.tol.length) > c.tol.length)
     return "the surfaces of " + f.str() + " and " + g.str() + " no longer agree within tolerance";
   // Neighbours with nearly the same surface as either face (detected pairs still queued
   // for merging) stay out of the vertices' meeting points: nearly parallel surfaces meet
@@ -55,7 +55,7 @@ std::string repair_same_geometry(RepairContext& c) {
       for (HalfedgeH h : b.loop_halfedges(l)) {
         FaceH n = b.face(twin(h));
         if (n.valid() && n != f && n != g && !alike.count(n) && b.surface(n).index() == b.surface(x).index() &&
-            geo::surface_deviation(b.surface(x), b.surface(n), *px, samples(b, n, c.tol)) <= c.tol.length)
+            geo::surface_deviation(b.surface(x), b.surface(n), *px, samples(b, n, c.tol), c.tol.length) <= c.tol.length)
           alike.insert(n);
       }
   pts.insert(pts.end(), pg.begin(), pg.end());

@@ -396,7 +396,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         const OriginalFace &oi = original.at(faces[i]), &og = original.at(g);
         bool one_plane;
         if (oi.neighbours.count(g)) {
-          one_plane = geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples) <= tol.length;
+          one_plane = geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples, tol.length) <= tol.length;
         } else {
           std::vector<geo::Vec3> both = oi.samples;
           both.insert(both.end(), og.samples.begin(), og.samples.end());

@@ -81,6 +81,19 @@ RC_GTEST_PROP(SameGeometryProperty, DeviationIsSymmetricAndScales, ()) {
   RC_ASSERT(std::abs(dm - m.scale * d) <= 1e-9 * m.scale * (1 + d));
 }
 
+// With `enough`, the deviation is cut short but tells the same side of `enough`, and
+// it is exact whenever it is not more than `enough`.
+RC_GTEST_PROP(SameGeometryProperty, DeviationCutShortAtEnoughDecidesAlike, ()) {
+  const Surface a = testing::gen_any_surface(), b = testing::gen_any_surface();
+  const auto sa = samples(a, -1, 1, -1, 1, 5), sb = samples(b, -1, 1, -1, 1, 5);
+  const double full = surface_deviation(a, b, sa, sb);
+  const double enough = full * gen_real(0.0, 2.0);
+  const double cut = surface_deviation(a, b, sa, sb, enough);
+  RC_ASSERT((cut > enough) == (full > enough));
+  RC_ASSERT(cut <= full);
+  if (full <= enough) RC_ASSERT(cut == full);
+}
+
 RC_GTEST_PROP(SameGeometryProperty, FitOfExactSamplesReproducesTheSurface, ()) {
   const Surface t = testing::gen_any_surface();
   const double vmax = std::holds_alternative<Sphere>(t) ? 1.2 : 1.0;
