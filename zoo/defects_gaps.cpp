@@ -1,6 +1,5 @@
 #include "zoo/defects_gaps.h"
 
-#include "geometry/box.h"
 #include "geometry/curve.h"
 #include "geometry/distance.h"
 #include "geometry/surface.h"
@@ -337,6 +336,8 @@ std::vector<GapSite> gap_sites(const Body& b, ProblemType t, double tol, Rng& rn
         auto bound = face_boundary(b, f, 1e-3 * tol);
         // At most about 1024 triangles, evenly spread over the tessellation: a curved
         // face's has thousands, and the gap needs room, not the exact farthest point.
+        // (Every triangle against every boundary segment took over a minute on a builder
+        // cone under the sanitizers: a fuzz_beautify timeout.)
         std::vector<Vec3> candidates{m.centroid};
         const std::size_t stride = 1 + m.mesh.triangles.size() / 1024;
         for (std::size_t t = 0; t < m.mesh.triangles.size(); t += stride) {
@@ -344,41 +345,12 @@ std::vector<GapSite> gap_sites(const Body& b, ProblemType t, double tol, Rng& rn
           candidates.push_back((m.mesh.vertices[std::size_t(tri[0])] + m.mesh.vertices[std::size_t(tri[1])] +
                                 m.mesh.vertices[std::size_t(tri[2])]) / 3.0);
         }
-        // Distance from p to the boundary, cut short once it is no more than `beat`: only a
-        // candidate farther than the best so far is kept, and most are not. Runs of 32
-        // segments carry a bounding box, and a run whose box is no nearer than the distance
-        // found so far is skipped. (Every candidate against every boundary segment took over
-        // a minute on a builder cone under the sanitizers: a fuzz_beautify timeout.)
-        struct Run {
-          const std::vector<Vec3>* loop;
-          std::size_t first, last;  // segments [first, last)
-          geo::Box box;
-        };
-        std::vector<Run> runs;
-        for (const auto& l : bound)
-          for (std::size_t i = 0; i < std::max<std::size_t>(l.size(), 2) - 1; i += 32) {
-            Run r{&l, i, std::min(i + 32, l.size() > 1 ? l.size() - 1 : 1), {}};
-            for (std::size_t k = r.first; k <= r.last && k < l.size(); ++k) r.box.add(l[k]);
-            runs.push_back(r);
-          }
-        auto boundary_distance = [&](const Vec3& p, double beat) {
-          double d = 1e300;
-          for (const Run& r : runs) {
-            const Vec3 out = (r.box.min - p).cwiseMax(p - r.box.max).cwiseMax(Vec3::Zero());
-            if (out.norm() >= d) continue;
-            const std::vector<Vec3>& l = *r.loop;
-            if (l.size() == 1) d = std::min(d, (p - l.front()).norm());
-            for (std::size_t i = r.first; i < r.last && i + 1 < l.size(); ++i)
-              d = std::min(d, geo::point_segment(p, l[i], l[i + 1]).distance);
-            if (d <= beat) break;
-          }
-          return d;
-        };
         Vec3 best = Vec3::Zero();
         double room = 0;
         for (const Vec3& c : candidates) {
           Vec3 p = geo::closest_point(b.surface(f), c).point;
-          const double d = boundary_distance(p, room);
+          double d = 1e300;
+          for (const auto& l : bound) d = std::min(d, geo::point_polyline(p, l).distance);
           if (d > room) room = d, best = p;
         }
         if (room <= 0) continue;
