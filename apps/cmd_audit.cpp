@@ -6,6 +6,7 @@
 #include "io/native_json.h"
 #include "repair/pass.h"
 
+#include <filesystem>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -20,10 +21,12 @@ const char* kHelp =
     "models from the zoo: every base solid, every defect kind, several defects at once,\n"
     "random tolerances, rotations, translations and scales. For each registered pass, each\n"
     "trial runs the passes before it, then the pass, and counts every problem present after\n"
-    "it that was not before it (same type and elements) in the cell (created type, pass).\n"
+    "it that was not before it (same kind of problem at the same place) in the cell\n"
+    "(created type, pass).\n"
     "A created problem of a type whose pass already ran is a counterexample to the order;\n"
     "one the paper marks \"No\" below the diagonal is reported as a disagreement.\n"
-    "Counterexamples and disagreements are shrunk (fewest faces, fewest defects, no motion).\n"
+    "Findings (counterexamples, disagreements, and a witness for each \"Yes\" cell reached)\n"
+    "are shrunk: fewest defects, fewest faces, no motion.\n"
     "A trial where problems of a type earlier than the pass are still there when it runs\n"
     "(no pass for them yet, or refused) is outside the paper's claim: it is counted as\n"
     "skipped, not judged.\n\n"
@@ -32,10 +35,11 @@ const char* kHelp =
     "  --pass P      audit one pass only (a problem type name, e.g. short_edge)\n"
     "  --json        print the 121 cells, counterexamples, disagreements and witnesses as JSON\n"
     "  --save DIR    write each finding as DIR/<kind>-<pass>-<created>.json (its recipe, the\n"
-    "                operation script that rebuilds the model) and .model.json (the native model)\n"
+    "                operation script that rebuilds the model) and .model.json (the native\n"
+    "                model); DIR is created if missing, and checked before the run starts\n"
     "  --no-shrink   keep findings as found\n\n"
     "Progress goes to stderr. Exit: 0 no counterexample; 1 a counterexample to the order was\n"
-    "found; 2 bad usage.\n";
+    "found; 2 bad usage or a finding that could not be saved.\n";
 
 std::string short_name(ProblemType t) {
   static const char* names[] = {"fgap", "egap", "mgap", "pinch", "sfch", "sliv", "sech", "same", "smf", "merg", "sed"};
@@ -92,6 +96,16 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     }
     o.pass = t;
   }
+  if (auto dir = args.value("--save")) {
+    // Before the run, which may take hours: a directory that cannot be made fails now.
+    std::error_code ec;
+    std::filesystem::create_directories(*dir, ec);
+    if (ec || !std::filesystem::is_directory(*dir)) {
+      err << "kintsugi audit: --save " << *dir << ": cannot create the directory"
+          << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
+      return kExitBadInput;
+    }
+  }
   const bool tty = isatty(STDERR_FILENO);
   long last = -1;
   o.progress = [&](ProblemType pass, long done, long total) {
@@ -106,13 +120,18 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     last = done == total ? -1 : pct;
   };
   audit::Result r = audit::run(o);
+  bool saved = true;
   if (auto dir = args.value("--save")) {
-    for (const auto& f : r.counterexamples)
-      if (!save_finding(*dir, "counterexample", f, &error)) err << "kintsugi audit: " << error << "\n";
-    for (const auto& f : r.disagreements)
-      if (!save_finding(*dir, "disagreement", f, &error)) err << "kintsugi audit: " << error << "\n";
-    for (const auto& f : r.witnesses)
-      if (!save_finding(*dir, "witness", f, &error)) err << "kintsugi audit: " << error << "\n";
+    auto save = [&](const char* kind, const std::vector<audit::Finding>& fs) {
+      for (const auto& f : fs)
+        if (!save_finding(*dir, kind, f, &error)) {
+          err << "kintsugi audit: " << error << "\n";
+          saved = false;
+        }
+    };
+    save("counterexample", r.counterexamples);
+    save("disagreement", r.disagreements);
+    save("witness", r.witnesses);
   }
   if (args.has("--json")) {
     nlohmann::json j = audit::to_json(r);
@@ -156,7 +175,8 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
       out << "disagreement with the paper: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created)
           << ": " << f.recipe.to_json().dump() << "\n";
   }
-  return r.counterexamples.empty() ? kExitOk : kExitInvalid;
+  if (!r.counterexamples.empty()) return kExitInvalid;
+  return saved ? kExitOk : kExitBadInput;
 }
 
 }  // namespace kintsugi::cli

@@ -48,18 +48,8 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
     if (problem_order(p.type) < problem_order(r.pass)) out.precondition = false;
   const std::size_t first = report.problems.size();
   run_pass(b, tol, r.pass, report, options);
-  // Table 1's diagonal is the pass's own queue (spec/beautify.md): a problem of its own
-  // type that a repair created — a merged face that now matches a third face under a new
-  // name — was taken up by the pass and, if it is still there, refused and reported as
-  // not repaired. That is a refusal, not a break of the order; only one the pass never
-  // saw is a counterexample.
-  std::vector<Problem> refused;
-  for (std::size_t i = first; i < report.problems.size(); ++i)
-    if (report.problems[i].outcome == Outcome::refused) refused.push_back(report.problems[i].problem);
-  const Detection after = detect(b, tol);
-  for (const Problem& p : after.problems)
-    if (!existed_before(p, before.problems) && !(p.type == r.pass && existed_before(p, refused)))
-      out.created.push_back(p);
+  const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
+  out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
   return out;
 }
 
@@ -92,6 +82,20 @@ bool existed_before(const Problem& after, const std::vector<Problem>& before) {
     if (same_kind && anchor(q) == key) return true;
   }
   return false;
+}
+
+std::vector<Problem> created_by(ProblemType pass, const std::vector<Problem>& before,
+                                const std::vector<Problem>& after, const std::vector<RepairEntry>& handled) {
+  // A problem of its own type that a repair created — a merged face that now matches a
+  // third face under a new name — was taken up by the pass and, if it is still there,
+  // refused and reported as not repaired: only one the pass never saw is created.
+  std::vector<Problem> refused;
+  for (const RepairEntry& e : handled)
+    if (e.outcome == Outcome::refused) refused.push_back(e.problem);
+  std::vector<Problem> out;
+  for (const Problem& p : after)
+    if (!existed_before(p, before) && !(p.type == pass && existed_before(p, refused))) out.push_back(p);
+  return out;
 }
 
 Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still) {
@@ -174,7 +178,16 @@ Result run(const Options& o) {
             if (q.type == created) return true;
           return false;
         };
-        Finding f{created, v == Verdict::allowed || !o.shrink ? r : shrink(r, creates), p};
+        Finding f{created, r, p};
+        if (o.shrink) {
+          f.recipe = shrink(r, creates);
+          // The example is the shrunk model's, so its element names match the recipe.
+          for (const Problem& q : run_trial(f.recipe, o.beautify).created)
+            if (q.type == created) {
+              f.example = q;
+              break;
+            }
+        }
         if (v == Verdict::counterexample)
           res.counterexamples.push_back(f);
         else if (v == Verdict::disagreement)

@@ -37,6 +37,14 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
 // pinch, the vertex of a mergeable pair, the face(s) or edge(s) of the others.
 bool existed_before(const Problem& after, const std::vector<Problem>& before);
 
+// The problems a pass created: those in `after` that did not exist `before` it, except one
+// of the pass's own type that it took up and refused (`handled`: the report entries the
+// pass added). Table 1's diagonal is the pass's own queue (spec/beautify.md): a problem of
+// its type that one of its repairs made is appended to it, and refusing it is a refusal,
+// not a break of the order.
+std::vector<Problem> created_by(ProblemType pass, const std::vector<Problem>& before,
+                                const std::vector<Problem>& after, const std::vector<RepairEntry>& handled);
+
 enum class Verdict {
   allowed,        // the paper says "Yes" and the cell is below the diagonal
   disagreement,   // below the diagonal, the paper says "No"
@@ -57,8 +65,8 @@ struct Options {
 
 struct Finding {
   ProblemType created;
-  Recipe recipe;  // shrunk
-  Problem example;
+  Recipe recipe;    // shrunk (unless Options::shrink is off)
+  Problem example;  // one problem of type `created` in the recipe's trial
 };
 
 struct Result {
@@ -68,7 +76,7 @@ struct Result {
   std::array<long, 11> skipped{}; // trials that ran with earlier problems left, per pass
   std::vector<Finding> counterexamples;  // one per cell, shrunk
   std::vector<Finding> disagreements;    // one per cell, shrunk
-  std::vector<Finding> witnesses;        // one per "Yes" cell reached, not shrunk
+  std::vector<Finding> witnesses;        // one per "Yes" cell reached, shrunk
   double seconds = 0.0;
 };
 Result run(const Options& o);

@@ -279,13 +279,14 @@ RC_GTEST_PROP(Beautify, PassesCreateNoProblemOfAnEarlierType, ()) {
   for (const Problem& q : before.problems) precondition = precondition && problem_order(q.type) >= problem_order(pass);
   RC_CLASSIFY(!precondition, "an earlier problem was left");
   if (!precondition) return;
+  const std::size_t first = r.problems.size();
   run_pass(b, tol, pass, r);
-  Detection after = detect(b, tol);
   const auto& may = table["can_cause"][problem_name(pass)];
   // By identity, as the audit counts it: a problem after the pass that was not there
-  // before it (the same kind at the same anchor) was created by it.
-  for (const Problem& p : after.problems) {
-    if (audit::existed_before(p, before.problems)) continue;
+  // before it (the same kind at the same anchor), and not one of its own type that it
+  // took up and refused, was created by it.
+  const std::vector<RepairEntry> handled(r.problems.begin() + std::ptrdiff_t(first), r.problems.end());
+  for (const Problem& p : audit::created_by(pass, before.problems, detect(b, tol).problems, handled)) {
     const ProblemType x = p.type;
     bool listed = false;
     for (const auto& y : may) listed = listed || y.get<std::string>() == problem_name(x);

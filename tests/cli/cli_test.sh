@@ -216,6 +216,12 @@ else pass=$((pass + 1)); fi
 
 # audit: one trial of one pass runs and finds no counterexample to the paper's order
 expect 0 "audit one trial" -- "$K" audit --trials 1 --pass short_edge --no-shrink
+# --save makes its directory (nested, missing) and refuses, before the run, one it cannot make.
+expect 0 "audit --save into a missing directory" -- "$K" audit --trials 1 --pass short_edge --save "$dir/audit/found"
+[ -d "$dir/audit/found" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: audit --save made no directory"; }
+: >"$dir/plainfile"
+expect 2 "audit --save under a plain file" -- "$K" audit --trials 1 --pass short_edge --save "$dir/plainfile/found"
+contains "cannot create the directory" "audit --save names the directory it cannot make"
 
 # convert: JSON to JSON always; STEP and BREP when this build has OpenCASCADE
 expect 0 "convert json to json" -- "$K" convert "$dir/torus.json" "$dir/torus2.json"

@@ -1,0 +1,142 @@
+#include "geometry/surface_params.h"
+
+#include "geometry/surface.h"
+
+#include <type_traits>
+#include <variant>
+
+namespace kintsugi::geo {
+
+std::vector<std::pair<double*, int>> SurfaceParams::blocks() {
+  switch (kind) {
+    case SurfaceKind::plane: return {{a, 3}, {s, 1}};
+    case SurfaceKind::cylinder: return {{a, 6}, {s, 1}};
+    case SurfaceKind::cone: return {{a, 6}, {s, 2}};
+    case SurfaceKind::sphere: return {{a, 3}, {s, 1}};
+    case SurfaceKind::torus: return {{a, 3}, {a + 3, 3}, {s, 2}};
+  }
+  return {};
+}
+
+ceres::Manifold* SurfaceParams::manifold(std::size_t block) const {
+  if (kind == SurfaceKind::plane && block == 0) return new ceres::SphereManifold<3>();
+  if ((kind == SurfaceKind::cylinder || kind == SurfaceKind::cone) && block == 0) return new ceres::LineManifold<3>();
+  if (kind == SurfaceKind::torus && block == 1) return new ceres::SphereManifold<3>();
+  return nullptr;
+}
+
+std::optional<SurfaceParams> params_of(const Surface& surface) {
+  SurfaceParams q;
+  auto put = [](double* to, const Vec3& v) {
+    for (int i = 0; i < 3; ++i) to[i] = v[i];
+  };
+  if (auto* p = std::get_if<Plane>(&surface)) {
+    q.kind = SurfaceKind::plane;
+    put(q.a, p->frame.z.normalized());
+    q.s[0] = p->frame.z.normalized().dot(p->frame.origin);
+  } else if (auto* c = std::get_if<Cylinder>(&surface)) {
+    q.kind = SurfaceKind::cylinder;
+    put(q.a, c->frame.origin);
+    put(q.a + 3, c->frame.z.normalized());
+    q.s[0] = c->radius;
+  } else if (auto* k = std::get_if<Cone>(&surface)) {
+    q.kind = SurfaceKind::cone;
+    put(q.a, k->frame.origin);
+    put(q.a + 3, k->frame.z.normalized());
+    q.s[0] = k->radius;
+    q.s[1] = k->half_angle;
+  } else if (auto* sp = std::get_if<Sphere>(&surface)) {
+    q.kind = SurfaceKind::sphere;
+    put(q.a, sp->frame.origin);
+    q.s[0] = sp->radius;
+  } else if (auto* t = std::get_if<Torus>(&surface)) {
+    q.kind = SurfaceKind::torus;
+    put(q.a, t->frame.origin);
+    put(q.a + 3, t->frame.z.normalized());
+    q.s[0] = t->major_radius;
+    q.s[1] = t->minor_radius;
+  } else {
+    return std::nullopt;
+  }
+  return q;
+}
+
+namespace {
+
+// The frame with a new origin and axis; x stays as near the old one as it can.
+Frame moved_frame(const Frame& old, const Vec3& origin, Vec3 z) {
+  z.normalize();
+  Vec3 x = old.x - old.x.dot(z) * z;
+  if (x.norm() < 1e-6) x = z.unitOrthogonal();
+  return Frame{origin, x.normalized(), z};
+}
+
+struct OnSolvedSurface {
+  SurfaceKind kind;
+  int surface_blocks;
+  bool variable_point;
+  Vec3 fixed_point;
+  const double* w;
+  template <typename T>
+  bool operator()(T const* const* q, T* r) const {
+    T x[3];
+    for (int i = 0; i < 3; ++i) x[i] = variable_point ? q[surface_blocks][i] : T(fixed_point[i]);
+    r[0] = T(*w) * surface_distance(kind, q, x);
+    return true;
+  }
+};
+
+}  // namespace
+
+Surface surface_from(const Surface& old, const SurfaceParams& q) {
+  const Vec3 a0(q.a[0], q.a[1], q.a[2]), a1(q.a[3], q.a[4], q.a[5]);
+  return std::visit(
+      [&](auto s) -> Surface {
+        using S = decltype(s);
+        if constexpr (std::is_same_v<S, Plane>) {
+          Vec3 n = a0.normalized();
+          s.frame = moved_frame(s.frame, s.frame.origin + (q.s[0] - n.dot(s.frame.origin)) * n, n);
+        } else if constexpr (std::is_same_v<S, Cylinder>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.radius = q.s[0];
+        } else if constexpr (std::is_same_v<S, Cone>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.radius = q.s[0];
+          s.half_angle = q.s[1];
+        } else if constexpr (std::is_same_v<S, Sphere>) {
+          s.frame.origin = a0;
+          s.radius = q.s[0];
+        } else if constexpr (std::is_same_v<S, Torus>) {
+          s.frame = moved_frame(s.frame, a0, a1);
+          s.major_radius = q.s[0];
+          s.minor_radius = q.s[1];
+        }
+        return s;
+      },
+      old);
+}
+
+ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool variable_point, const Vec3& fixed_point,
+                                       const double* w, std::vector<double*>& blocks) {
+  auto bl = p.blocks();
+  auto* f = new ceres::DynamicAutoDiffCostFunction<OnSolvedSurface, 4>(
+      new OnSolvedSurface{p.kind, int(bl.size()), variable_point, fixed_point, w});
+  blocks.clear();
+  for (auto [ptr, size] : bl) {
+    f->AddParameterBlock(size);
+    blocks.push_back(ptr);
+  }
+  if (variable_point) f->AddParameterBlock(3);
+  f->SetNumResiduals(1);
+  return f;
+}
+
+bool OnFixedSurface::Evaluate(double const* const* params, double* residuals, double** jacobians) const {
+  const SurfacePoint sp = closest_point(s_, Vec3(params[0][0], params[0][1], params[0][2]));
+  residuals[0] = *w_ * sp.distance;
+  if (jacobians && jacobians[0])
+    for (int i = 0; i < 3; ++i) jacobians[0][i] = *w_ * sp.normal[i];
+  return std::isfinite(residuals[0]);
+}
+
+}  // namespace kintsugi::geo
