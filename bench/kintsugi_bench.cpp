@@ -7,6 +7,9 @@
 //     "baseline_rss_bytes", "seconds"}. The peak includes the process's baseline (the
 //     binary and its libraries), measured before building and reported separately.
 //
+//   kintsugi-bench solvers
+//     The cost of geo::meet_point and geo::fit_surface_like (bench/solvers_bench.h).
+//
 //   kintsugi-bench io --faces N [--rate R] [--seed S] [--dir D]
 //     The native JSON writer and reader on the scalable family (zoo::family, N faces,
 //     defect rate R, default 0.1, seed S, default 1). Builds the model once, then runs
@@ -20,6 +23,7 @@
 //                     full topology check; then, outside the timing, Body::equals.
 //     Last line: JSON {"faces", "bytes", "model_seconds", "model_rss_bytes", "steps":
 //     {step: {"seconds", "peak_rss_bytes"}}, "read_back_equal"}.
+#include "bench/solvers_bench.h"
 #include "invariants/topology_check.h"
 #include "io/native_json.h"
 #include "kernel/builders.h"
@@ -64,7 +68,10 @@ int usage(std::ostream& os, int code) {
         "          --check  also run the full topology check on the result (adds its own memory)\n"
         "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
         "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
-        "          prints each step's time and peak memory (each step runs in a child process).\n";
+        "          prints each step's time and peak memory (each step runs in a child process).\n"
+        "       kintsugi-bench solvers\n"
+        "  solvers Times geo::meet_point (2000 cases, 5 times) and geo::fit_surface_like (400\n"
+        "          fits) on fixed random cases; prints the cost per call and checksums of the answers.\n";
   return code;
 }
 
@@ -196,6 +203,7 @@ int bench_io(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) return usage(std::cout, 0);
   if (argc >= 2 && std::strcmp(argv[1], "io") == 0) return bench_io(argc, argv);
+  if (argc == 2 && std::strcmp(argv[1], "solvers") == 0) return kintsugi::bench::bench_solvers();
   if (argc < 2 || std::strcmp(argv[1], "memory") != 0) return usage(std::cerr, 2);
   long long faces = -1;
   bool check = false;

@@ -1,6 +1,7 @@
 #include "geometry/meet_point.h"
 
 #include "geometry/surface.h"
+#include "geometry/surface_params.h"
 
 #include <Eigen/Dense>
 
@@ -50,6 +51,40 @@ Vec3 min_norm_step(const Linearised& l, double cut, int& rank) {
   return -(svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose() * l.dist);
 }
 
+// Curved surfaces: a Ceres least-squares problem over the point, one residual per surface
+// (its signed distance; the derivative is the unit normal there, geometry/surface_params.h)
+// and a prior `cut`·|x − guess|. The prior is the Tikhonov form of the minimum-norm step:
+// a direction the normals span with singular value σ ≫ cut is solved fully, one with
+// σ ≪ cut (the surfaces meet along it, or nearly so) keeps the guess; at a solution it
+// shifts the point by about cut²·|x − guess|/σ, far below the precision.
+struct NearGuess {
+  Vec3 guess;
+  double w;
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    for (int i = 0; i < 3; ++i) r[i] = T(w) * (x[i] - guess[i]);
+    return true;
+  }
+};
+
+Vec3 solve_curved(const std::vector<Surface>& surfaces, const Vec3& guess, double cut) {
+  double x[3] = {guess.x(), guess.y(), guess.z()};
+  const double unit = 1.0;
+  ceres::Problem problem;
+  for (const Surface& s : surfaces) problem.AddResidualBlock(new OnFixedSurface(s, &unit), nullptr, x);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NearGuess, 3, 3>(new NearGuess{guess, cut}), nullptr, x);
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 100;
+  options.function_tolerance = 1e-16;
+  options.parameter_tolerance = 1e-16;
+  options.gradient_tolerance = 1e-24;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return summary.IsSolutionUsable() ? Vec3(x[0], x[1], x[2]) : guess;
+}
+
 }  // namespace
 
 MeetPoint meet_point(const std::vector<Surface>& surfaces, const Vec3& guess, double tolerance, double precision) {
@@ -73,27 +108,16 @@ MeetPoint meet_point(const std::vector<Surface>& surfaces, const Vec3& guess, do
   const double cut = std::max(1e-12, precision / std::max(tolerance, precision));
   const bool planes = std::all_of(surfaces.begin(), surfaces.end(),
                                   [](const Surface& s) { return std::holds_alternative<Plane>(s); });
-  Vec3 x = guess;
   int rank = 0;
-  Linearised l = linearise(surfaces, x);
-  for (int it = 0; it < 100; ++it) {
-    const Vec3 step = min_norm_step(l, cut, rank);
-    // Backtrack while the worst distance grows (curved surfaces far from the guess).
-    const double before = l.dist.cwiseAbs().maxCoeff();
-    double scale = 1.0;
-    Vec3 next = x + step;
-    Linearised ln = linearise(surfaces, next);
-    while (ln.dist.cwiseAbs().maxCoeff() > before && scale > 1e-4 && !planes) {
-      scale /= 2;
-      next = x + scale * step;
-      ln = linearise(surfaces, next);
-    }
-    const double moved = (next - x).norm();
-    x = next;
-    l = std::move(ln);
-    if (moved <= 1e-3 * precision || l.dist.cwiseAbs().maxCoeff() <= 1e-3 * precision) break;
-    if (planes && it >= 1) break;  // linear: the first step is the solution
+  Vec3 x = guess;
+  if (planes) {
+    // Linear: the minimum-norm step from the guess is the solution (closed form; a second
+    // step only removes rounding).
+    for (int it = 0; it < 2; ++it) x += min_norm_step(linearise(surfaces, x), cut, rank);
+  } else {
+    x = solve_curved(surfaces, guess, cut);
   }
+  Linearised l = linearise(surfaces, x);
   min_norm_step(l, cut, rank);  // the rank at the solution
   out.point = x;
   Eigen::Index worst = 0;

@@ -12,7 +12,7 @@ namespace kintsugi::geo {
 
 enum class MeetStatus {
   exact,            // three planes with independent normals: solved directly
-  least_squares,    // iterative solution, residual within tolerance
+  least_squares,    // least-squares solution, residual within tolerance
   underdetermined,  // normals span < 3 directions at the solution: the surfaces meet in a
                     // curve or surface; `point` is the meeting point nearest the guess
   no_point,         // best point found is farther than `tolerance` from some surface
@@ -27,9 +27,9 @@ struct MeetPoint {
   std::string problem;    // for no_point / degenerate: which surface is how far away
 };
 
-// Solves for the point nearest `guess` lying on all `surfaces` (Gauss-Newton with
-// minimum-norm steps, so an underdetermined system returns the solution nearest the
-// guess). `tolerance` is the length tolerance deciding "meets"; `precision` the
+// Solves for the point nearest `guess` lying on all `surfaces` (planes: the minimum-norm
+// least-squares step, closed form; curved surfaces: Ceres, with a prior that plays the
+// same part), so an underdetermined system returns the solution nearest the guess. `tolerance` is the length tolerance deciding "meets"; `precision` the
 // modelling precision used for rank decisions and convergence.
 MeetPoint meet_point(const std::vector<Surface>& surfaces, const Vec3& guess, double tolerance, double precision);
 

@@ -2,11 +2,13 @@
 
 #include "geometry/frame.h"
 #include "geometry/surface.h"
+#include "geometry/surface_params.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace kintsugi::geo {
 
@@ -61,48 +63,12 @@ SurfaceFit fit_plane(const Plane& model, const std::vector<Vec3>& points) {
   return f;
 }
 
-// Parameter vector: [origin shift (3), rotation vector (3), shape (0-2)], lengths in
-// units of `scale` so the problem is equally conditioned at every model size.
-struct Param {
-  const Surface& model;
-  double scale;
-
-  Surface build(const Eigen::VectorXd& p) const {
-    const Vec3 shift = p.segment<3>(0) * scale;
-    const Vec3 w = p.segment<3>(3);
-    const Eigen::Matrix3d r = w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                                            : Eigen::Matrix3d::Identity();
-    return std::visit(
-        [&](const auto& s) -> Surface {
-          using T = std::decay_t<decltype(s)>;
-          if constexpr (std::is_same_v<T, std::monostate> || !requires { s.frame; }) {
-            return s;  // free-form surfaces are never refitted (fit_surface_like refuses them)
-          } else {
-            T out = s;
-            out.frame.origin = s.frame.origin + shift;
-            out.frame.x = (r * s.frame.x).normalized();
-            out.frame.z = (r * s.frame.z).normalized();
-            if constexpr (std::is_same_v<T, Cylinder> || std::is_same_v<T, Sphere>) {
-              out.radius = s.radius + p(6) * scale;
-            } else if constexpr (std::is_same_v<T, Cone>) {
-              out.radius = s.radius + p(6) * scale;
-              out.half_angle = s.half_angle + p(7);
-            } else if constexpr (std::is_same_v<T, Torus>) {
-              out.major_radius = s.major_radius + p(6) * scale;
-              out.minor_radius = s.minor_radius + p(7) * scale;
-            }
-            return out;
-          }
-        },
-        model);
-  }
-  int size() const {
-    if (std::holds_alternative<Cone>(model) || std::holds_alternative<Torus>(model)) return 8;
-    return 7;
-  }
-};
-
-SurfaceFit fit_levenberg_marquardt(const Surface& model, const std::vector<Vec3>& points) {
+// Curved surfaces: least squares over the surface's own parameters (surface_params.h:
+// axis lines and unit axes on Ceres manifolds, so no gauge freedom is left), one residual
+// per point, its signed distance over `scale` so the problem is equally conditioned at
+// every model size. Radii stay positive and a cone's half-angle keeps its sign (bounds),
+// so the result is a surface of the same kind and sense.
+SurfaceFit fit_with_ceres(const Surface& model, const std::vector<Vec3>& points) {
   SurfaceFit f;
   f.surface = model;
   Vec3 lo = points.front(), hi = points.front();
@@ -112,64 +78,61 @@ SurfaceFit fit_levenberg_marquardt(const Surface& model, const std::vector<Vec3>
     f.problem = "the points are all the same";
     return f;
   }
-  const Param param{model, scale};
-  const int n = param.size(), m = static_cast<int>(points.size());
-  auto residuals = [&](const Eigen::VectorXd& p, Eigen::VectorXd& r) {
-    const Surface s = param.build(p);
-    if (!surface_problem(s).empty()) return false;  // e.g. a radius went negative
-    r.resize(m);
-    for (int i = 0; i < m; ++i) r(i) = signed_distance(s, points[i]) / scale;
-    return true;
-  };
-  Eigen::VectorXd p = Eigen::VectorXd::Zero(n), r;
-  residuals(p, r);
-  double cost = r.squaredNorm(), lambda = 1e-3;
-  const double h = 1e-7;
-  for (int it = 0; it < 200; ++it) {
-    Eigen::MatrixXd jac(m, n);
-    Eigen::VectorXd rp, rm;
-    for (int k = 0; k < n; ++k) {
-      Eigen::VectorXd q = p;
-      q(k) += h;
-      if (!residuals(q, rp)) {
-        q(k) = p(k) - h;  // one-sided the other way at a bound
-        residuals(q, rp);
-        jac.col(k) = (r - rp) / h;
-        continue;
-      }
-      q(k) = p(k) - h;
-      jac.col(k) = residuals(q, rm) ? Eigen::VectorXd((rp - rm) / (2 * h)) : Eigen::VectorXd((rp - r) / h);
-    }
-    const Eigen::MatrixXd jtj = jac.transpose() * jac;
-    const Eigen::VectorXd g = jac.transpose() * r;
-    // Gauge directions (rotation about a symmetry axis, sliding along it) have zero
-    // curvature: the small absolute damping keeps the system solvable and the step
-    // zero along them.
-    const double floor = 1e-12 * std::max(1.0, jtj.diagonal().maxCoeff());
-    bool improved = false;
-    for (int tries = 0; tries < 20 && !improved; ++tries) {
-      Eigen::MatrixXd a = jtj;
-      for (int k = 0; k < n; ++k) a(k, k) += lambda * jtj(k, k) + floor;
-      const Eigen::VectorXd step = -a.ldlt().solve(g);
-      Eigen::VectorXd trial = p + step, rt;
-      if (residuals(trial, rt) && rt.squaredNorm() < cost) {
-        const double gain = cost - rt.squaredNorm();
-        p = trial, r = rt, cost = rt.squaredNorm();
-        lambda = std::max(lambda / 3, 1e-12);
-        improved = true;
-        if (gain <= 1e-15 * std::max(cost, 1e-30) || step.norm() < 1e-13) it = 1 << 20;  // converged
-      } else {
-        lambda *= 4;
-      }
-    }
-    if (!improved) break;  // no descent left: at a minimum (to rounding)
+  std::optional<SurfaceParams> q = params_of(model);
+  if (!q) {
+    f.problem = std::string("no parameters for a ") + surface_type_name(model);
+    return f;
   }
-  f.surface = param.build(p);
-  // Cylinders: slide the origin back to the foot of the model's origin on the new axis.
-  if (auto* c = std::get_if<Cylinder>(&f.surface)) {
-    const Vec3 o = std::get<Cylinder>(model).frame.origin;
-    c->frame.origin += (o - c->frame.origin).dot(c->frame.z) * c->frame.z;
+  const double w = 1.0 / scale;
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  const auto blocks = q->blocks();
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    problem.AddParameterBlock(blocks[k].first, blocks[k].second);
+    if (ceres::Manifold* m = q->manifold(k)) problem.SetManifold(blocks[k].first, m);
   }
+  // The shape block (radii, half-angle) is the last; keep it inside the valid shapes.
+  double* shape = blocks.back().first;
+  constexpr double kAngleMargin = 1e-6;
+  switch (q->kind) {
+    case SurfaceKind::cylinder:
+    case SurfaceKind::sphere: problem.SetParameterLowerBound(shape, 0, 1e-9 * scale); break;
+    case SurfaceKind::cone:
+      problem.SetParameterLowerBound(shape, 0, 0.0);
+      problem.SetParameterLowerBound(shape, 1, shape[1] > 0 ? kAngleMargin : -kPi / 2 + kAngleMargin);
+      problem.SetParameterUpperBound(shape, 1, shape[1] > 0 ? kPi / 2 - kAngleMargin : -kAngleMargin);
+      break;
+    case SurfaceKind::torus:
+      problem.SetParameterLowerBound(shape, 0, 0.0);
+      problem.SetParameterLowerBound(shape, 1, 1e-9 * scale);
+      break;
+    case SurfaceKind::plane: break;
+  }
+  std::vector<double*> used;
+  for (const Vec3& p : points) {
+    ceres::CostFunction* c = on_solved_surface(*q, false, p, &w, used);
+    problem.AddResidualBlock(c, nullptr, used);
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-15;
+  options.parameter_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-20;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    f.problem = "the solver stopped without a usable fit: " + summary.message;
+    return f;
+  }
+  const Surface fitted = surface_from(model, *q);
+  if (const std::string bad = surface_problem(fitted); !bad.empty()) {
+    f.problem = "the fit is no valid surface: " + bad;
+    return f;
+  }
+  f.surface = fitted;
   f.converged = true;
   measure(f, points);
   return f;
@@ -196,7 +159,7 @@ SurfaceFit fit_surface_like(const Surface& model, const std::vector<Vec3>& point
                 " points, got " + std::to_string(points.size());
     return f;
   }
-  return fit_levenberg_marquardt(model, points);
+  return fit_with_ceres(model, points);
 }
 
 }  // namespace kintsugi::geo

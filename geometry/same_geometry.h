@@ -43,9 +43,10 @@ struct SurfaceFit {
 
 // Least-squares refit of a surface of the model's type to `points`, starting from the
 // model (repairs use it to give the union of two merged faces one surface). Planes: SVD
-// of the centred points. Other types: Levenberg-Marquardt on the signed distances over
-// the frame (origin, small rotation) and the radii / half-angle. The result keeps the
-// model's orientation (normal sense) and, where the type allows, its frame x direction.
+// of the centred points (closed form). Other types: a Ceres least-squares problem on the
+// signed distances over the surface's parameter blocks (geometry/surface_params.h). The
+// result keeps the model's orientation (normal sense) and, where the type allows, its
+// frame x direction.
 SurfaceFit fit_surface_like(const Surface& model, const std::vector<Vec3>& points);
 
 }  // namespace kintsugi::geo

@@ -65,9 +65,17 @@ T surface_distance(SurfaceKind kind, T const* const* q, const T* x) {
   switch (kind) {
     case SurfaceKind::plane: return q[0][0] * x[0] + q[0][1] * x[1] + q[0][2] * x[2] - q[1][0];
     case SurfaceKind::cylinder: axial(q[0], q[0] + 3, h, rho); return rho - q[1][0];
-    case SurfaceKind::cone:
+    case SurfaceKind::cone: {
+      // In the meridian half-plane through x the double cone is a V: the generator of x's
+      // own side (radius r + t·sinα ≥ 0) and the other nappe's, seen from this side
+      // (radius ≤ 0); the nearer one counts (geometry/surface.cpp, closest_cone). With the
+      // first alone, samples beyond the apex pulled a fit into a wrong cone.
       axial(q[0], q[0] + 3, h, rho);
-      return (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
+      const T near_side = (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
+      const T far_side = (rho + q[1][0]) * cos(q[1][1]) + h * sin(q[1][1]);
+      using std::abs;
+      return abs(far_side) < abs(near_side) ? far_side : near_side;
+    }
     case SurfaceKind::sphere: {
       T d[3] = {x[0] - q[0][0], x[1] - q[0][1], x[2] - q[0][2]};
       return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 1e-300) - q[1][0];

@@ -11,6 +11,7 @@
 
 #include "geometry/same_geometry.h"
 #include "geometry/surface.h"
+#include "geometry/surface_params.h"
 #include "invariants/element_geometry.h"
 #include "repair/beautify_detail.h"
 
@@ -92,177 +93,13 @@ std::vector<geo::Vec3> samples_of(const Body& b, FaceH f, const geo::Tolerances&
   return out;
 }
 
-// A solved surface's unknowns, in Ceres parameter blocks without redundant freedom:
-//   plane     unit normal n (sphere manifold) | offset d                   (n·x = d)
-//   cylinder  axis as a line: origin, unit direction (line manifold) | radius
-//   cone      axis as a line | radius at the origin, half-angle
-//   sphere    centre | radius
-//   torus     centre | unit axis (sphere manifold) | major, minor radius
-// (The line manifold moves the origin only across the axis, so a cone's radius at its
-// origin stays meaningful.)
-enum class Kind { plane, cylinder, cone, sphere, torus };
-
-struct SurfaceParams {
-  Kind kind = Kind::plane;
-  double a[6] = {};  // normal / line (origin, direction) / centre (+ axis for a torus)
-  double s[2] = {};  // d / radius / radius, half-angle / radius / major, minor
-
-  // The parameter blocks, in the order `distance` reads them.
-  std::vector<std::pair<double*, int>> blocks() {
-    switch (kind) {
-      case Kind::plane: return {{a, 3}, {s, 1}};
-      case Kind::cylinder: return {{a, 6}, {s, 1}};
-      case Kind::cone: return {{a, 6}, {s, 2}};
-      case Kind::sphere: return {{a, 3}, {s, 1}};
-      case Kind::torus: return {{a, 3}, {a + 3, 3}, {s, 2}};
-    }
-    return {};
-  }
-  ceres::Manifold* manifold(std::size_t block) const {
-    if (kind == Kind::plane && block == 0) return new ceres::SphereManifold<3>();
-    if ((kind == Kind::cylinder || kind == Kind::cone) && block == 0) return new ceres::LineManifold<3>();
-    if (kind == Kind::torus && block == 1) return new ceres::SphereManifold<3>();
-    return nullptr;
-  }
-};
-
-std::optional<SurfaceParams> params_of(const geo::Surface& surface) {
-  SurfaceParams q;
-  auto put = [](double* to, const geo::Vec3& v) {
-    for (int i = 0; i < 3; ++i) to[i] = v[i];
-  };
-  if (auto* p = std::get_if<geo::Plane>(&surface)) {
-    q.kind = Kind::plane;
-    put(q.a, p->frame.z.normalized());
-    q.s[0] = p->frame.z.normalized().dot(p->frame.origin);
-  } else if (auto* c = std::get_if<geo::Cylinder>(&surface)) {
-    q.kind = Kind::cylinder;
-    put(q.a, c->frame.origin);
-    put(q.a + 3, c->frame.z.normalized());
-    q.s[0] = c->radius;
-  } else if (auto* k = std::get_if<geo::Cone>(&surface)) {
-    q.kind = Kind::cone;
-    put(q.a, k->frame.origin);
-    put(q.a + 3, k->frame.z.normalized());
-    q.s[0] = k->radius;
-    q.s[1] = k->half_angle;
-  } else if (auto* sp = std::get_if<geo::Sphere>(&surface)) {
-    q.kind = Kind::sphere;
-    put(q.a, sp->frame.origin);
-    q.s[0] = sp->radius;
-  } else if (auto* t = std::get_if<geo::Torus>(&surface)) {
-    q.kind = Kind::torus;
-    put(q.a, t->frame.origin);
-    put(q.a + 3, t->frame.z.normalized());
-    q.s[0] = t->major_radius;
-    q.s[1] = t->minor_radius;
-  } else {
-    return std::nullopt;
-  }
-  return q;
-}
-
-// The frame with a new origin and axis; x stays as near the old one as it can.
-geo::Frame moved_frame(const geo::Frame& old, const geo::Vec3& origin, geo::Vec3 z) {
-  z.normalize();
-  geo::Vec3 x = old.x - old.x.dot(z) * z;
-  if (x.norm() < 1e-6) x = z.unitOrthogonal();
-  return geo::Frame{origin, x.normalized(), z};
-}
-
-geo::Surface surface_from(const geo::Surface& old, const SurfaceParams& q) {
-  const geo::Vec3 a0(q.a[0], q.a[1], q.a[2]), a1(q.a[3], q.a[4], q.a[5]);
-  return std::visit(
-      [&](auto s) -> geo::Surface {
-        using S = decltype(s);
-        if constexpr (std::is_same_v<S, geo::Plane>) {
-          geo::Vec3 n = a0.normalized();
-          s.frame = moved_frame(s.frame, s.frame.origin + (q.s[0] - n.dot(s.frame.origin)) * n, n);
-        } else if constexpr (std::is_same_v<S, geo::Cylinder>) {
-          s.frame = moved_frame(s.frame, a0, a1);
-          s.radius = q.s[0];
-        } else if constexpr (std::is_same_v<S, geo::Cone>) {
-          s.frame = moved_frame(s.frame, a0, a1);
-          s.radius = q.s[0];
-          s.half_angle = q.s[1];
-        } else if constexpr (std::is_same_v<S, geo::Sphere>) {
-          s.frame.origin = a0;
-          s.radius = q.s[0];
-        } else if constexpr (std::is_same_v<S, geo::Torus>) {
-          s.frame = moved_frame(s.frame, a0, a1);
-          s.major_radius = q.s[0];
-          s.minor_radius = q.s[1];
-        }
-        return s;
-      },
-      old);
-}
-
-// Signed distance from x to the surface with blocks q (geometry/surface.cpp's senses:
-// outward positive), in a form Ceres can differentiate.
-template <typename T>
-T distance(Kind kind, T const* const* q, const T* x) {
-  using std::cos;
-  using std::sin;
-  using std::sqrt;
-  auto axial = [&](const T* o, const T* d, T& h, T& rho) {
-    T v[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
-    h = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
-    T w[3] = {v[0] - h * d[0], v[1] - h * d[1], v[2] - h * d[2]};
-    // (+1e-300: on the axis, a cone's apex, the derivative is 0·finite, not 0·∞.)
-    rho = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + 1e-300);
-  };
-  T h, rho;
-  switch (kind) {
-    case Kind::plane: return q[0][0] * x[0] + q[0][1] * x[1] + q[0][2] * x[2] - q[1][0];
-    case Kind::cylinder: axial(q[0], q[0] + 3, h, rho); return rho - q[1][0];
-    case Kind::cone:
-      axial(q[0], q[0] + 3, h, rho);
-      return (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
-    case Kind::sphere: {
-      T d[3] = {x[0] - q[0][0], x[1] - q[0][1], x[2] - q[0][2]};
-      return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 1e-300) - q[1][0];
-    }
-    case Kind::torus: {
-      axial(q[0], q[1], h, rho);
-      T dr = rho - q[2][0];
-      return sqrt(dr * dr + h * h + 1e-300) - q[2][1];
-    }
-  }
-  return T(0);
-}
-
-// A point on a solved surface: a variable vertex (hard; the point is the last block) or
-// a sample of the face before the repair (data; the point is fixed).
-struct OnSolvedSurface {
-  Kind kind;
-  int surface_blocks;
-  bool vertex;
-  geo::Vec3 sample;
-  const double* w;  // read at each evaluation: the hard weight grows between solves
-  template <typename T>
-  bool operator()(T const* const* q, T* r) const {
-    T x[3];
-    for (int i = 0; i < 3; ++i) x[i] = vertex ? q[surface_blocks][i] : T(sample[i]);
-    r[0] = T(*w) * distance(kind, q, x);
-    return true;
-  }
-};
-
-ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool vertex, const geo::Vec3& sample, const double* w,
-                                       std::vector<double*>& blocks) {
-  auto bl = p.blocks();
-  auto* f = new ceres::DynamicAutoDiffCostFunction<OnSolvedSurface, 4>(
-      new OnSolvedSurface{p.kind, int(bl.size()), vertex, sample, w});
-  blocks.clear();
-  for (auto [ptr, size] : bl) {
-    f->AddParameterBlock(size);
-    blocks.push_back(ptr);
-  }
-  if (vertex) f->AddParameterBlock(3);
-  f->SetNumResiduals(1);
-  return f;
-}
+// The surfaces' unknowns and the residuals on them: geometry/surface_params.h.
+using geo::on_solved_surface;
+using geo::OnFixedSurface;
+using geo::params_of;
+using geo::surface_from;
+using geo::SurfaceParams;
+using Kind = geo::SurfaceKind;
 
 // Prior: a vertex near where the repair put it.
 struct Stay {
@@ -273,24 +110,6 @@ struct Stay {
     for (int i = 0; i < 3; ++i) r[i] = T(w) * (p[i] - p0[i]);
     return true;
   }
-};
-
-// Hard: a variable vertex on a fixed surface of any kind. The derivative of the signed
-// distance is the unit normal at the nearest point.
-class OnFixedSurface final : public ceres::SizedCostFunction<1, 3> {
- public:
-  OnFixedSurface(const geo::Surface& s, const double* w) : s_(s), w_(w) {}
-  bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
-    geo::SurfacePoint sp = geo::closest_point(s_, geo::Vec3(params[0][0], params[0][1], params[0][2]));
-    residuals[0] = *w_ * sp.distance;
-    if (jacobians && jacobians[0])
-      for (int i = 0; i < 3; ++i) jacobians[0][i] = *w_ * sp.normal[i];
-    return std::isfinite(residuals[0]);
-  }
-
- private:
-  geo::Surface s_;
-  const double* w_;
 };
 
 double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {

@@ -52,6 +52,18 @@ TEST(MeetPoint, CurvedSurfacesAndFourPlanes) {
   EXPECT_EQ(meet_point(four, Vec3(0.5, 0.5, 0.5), 0.1, 1e-9).status, MeetStatus::least_squares);
 }
 
+TEST(MeetPoint, CurvedSurfacesMeetingInACurveGiveThePointNearTheGuess) {
+  // Sphere |x| = 2 and plane z = 1 meet in a circle of radius √3; from a guess in the plane
+  // y = 0 the point stays in it (nothing pulls it sideways) and is the circle's point on
+  // the guess's side, not some other point of the circle.
+  const MeetPoint m = meet_point({Sphere{Frame{}, 2.0}, plane(Vec3(0, 0, 1), Vec3::UnitZ())}, Vec3(3, 0, 5), 1e-3, 1e-9);
+  EXPECT_EQ(m.status, MeetStatus::underdetermined);
+  EXPECT_LT(m.residual, 1e-9);
+  EXPECT_NEAR(m.point.y(), 0.0, 1e-9);
+  EXPECT_NEAR(m.point.x(), std::sqrt(3.0), 1e-6);
+  EXPECT_NEAR(m.point.z(), 1.0, 1e-9);
+}
+
 RC_GTEST_PROP(MeetPointProperty, FindsAPointOnThreeSurfacesThroughIt, ()) {
   // Three random surfaces forced through a common point p: the solver lands on all three.
   const Vec3 p = testing::gen_vec(3.0);

@@ -59,6 +59,22 @@ TEST(SameGeometry, FitRecoversEachType) {
   }
 }
 
+// Samples on both nappes of a double cone (radius 0.5 at the origin, half-angle 1.004:
+// the apex at v = -0.59, the samples reach v = -1). Found by
+// SameGeometryProperty.FitOfExactSamplesReproducesTheSurface: the fit measured the far
+// nappe's samples against the near one's generator and settled on a wrong cone 0.22 away.
+TEST(SameGeometry, FitOfAConeSampledAcrossItsApex) {
+  const Cone truth{frame_from_axis(Vec3(-5, -5, -5), -Vec3::UnitZ()), 0.5, 1.00419};
+  const auto pts = samples(truth, -1.5, 1.5, -1.0, 1.0, 8);
+  Cone model = truth;
+  model.frame = frame_from_axis(truth.frame.origin + Vec3(0.01, -0.02, 0.015), truth.frame.z + Vec3(0.02, 0.01, 0),
+                                truth.frame.x);
+  const SurfaceFit f = fit_surface_like(model, pts);
+  ASSERT_TRUE(f.converged) << f.problem;
+  EXPECT_LT(f.max_deviation, 1e-7);
+  EXPECT_LT(surface_deviation(truth, f.surface, pts, pts), 1e-7);
+}
+
 TEST(SameGeometry, FitSaysWhyItCannot) {
   EXPECT_EQ(fit_surface_like(Plane{}, {Vec3::Zero(), Vec3::UnitX()}).problem,
             "a plane fit needs at least 3 points, got 2");
