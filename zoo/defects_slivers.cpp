@@ -39,6 +39,17 @@ EdgeFrame edge_frame(const Body& b, EdgeH e, FaceH A) {
   return f;
 }
 
+// Why no fillet fits along e (empty if one does): its ends are arcs, so the faces at the
+// edge's ends must be planes square to it.
+std::string fillet_unsuitable(const Body& b, EdgeH e, const EdgeFrame& f) {
+  for (HalfedgeH h : {b.next(twin(b.next(twin(f.hA)))), b.next(twin(b.next(f.hA)))}) {
+    FaceH end = b.face(h);
+    if (!end.valid() || !plane_of(b, end) || std::abs(outward_normal(b, end).dot(f.d)) < 1 - 1e-9)
+      return "the faces at the ends of " + e.str() + " are not square to it";
+  }
+  return "";
+}
+
 }  // namespace
 
 namespace make {
@@ -58,12 +69,7 @@ KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius) {
   if (std::abs(na_ub) < 1e-6 || std::abs(nb_ua) < 1e-6) throw Unsuitable(e.str() + " is too flat for a fillet");
   Vec3 c = f.p + (s * radius / nb_ua) * f.uA + (s * radius / na_ub) * f.uB;
   Vec3 tA = c - s * radius * f.nA, tB = c - s * radius * f.nB;
-  // Its ends are arcs: the faces at the edge's ends must be square to it.
-  for (HalfedgeH h : {b.next(twin(b.next(twin(f.hA)))), b.next(twin(b.next(f.hA)))}) {
-    FaceH end = b.face(h);
-    if (!end.valid() || !plane_of(b, end) || std::abs(outward_normal(b, end).dot(f.d)) < 1 - 1e-9)
-      throw Unsuitable("the faces at the ends of " + e.str() + " are not square to it");
-  }
+  if (const std::string why = fillet_unsuitable(b, e, f); !why.empty()) throw Unsuitable(why);
   KnownDefect d = chamfer_plane(b, e, A, tA, f.d.cross(tB - tA));
   FaceH sliver = face_named(d.elements[0]);
   geo::Cylinder cyl;
@@ -280,7 +286,17 @@ std::vector<Maker> sliver_makers(const Body& b, const std::vector<EdgeH>& edges,
     if (b.degree(b.origin(h)) != 3 || b.degree(b.target(h)) != 3) continue;
     if (straight_length(b, e) < 10 * tol) continue;  // a sliver is long: area / diagonal < tol
     FaceH a = b.face(h);
-    const std::uint64_t kind = rng.below(3);
+    std::uint64_t kind = rng.below(3);
+    // A fillet only where one fits (its ends are arcs on faces square to the edge): else a
+    // chamfer, so a solid with no such edge (a pyramid) still gets a sliver wherever the
+    // draw would have put a fillet on every edge.
+    if (kind == 2) {
+      try {
+        if (!fillet_unsuitable(b, e, edge_frame(b, e, a)).empty()) kind = rng.below(2);
+      } catch (const Unsuitable&) {
+        kind = rng.below(2);
+      }
+    }
     const double w0 = w(), w1 = w(), w2 = w();
     if (kind == 0)
       out.push_back({[=](Body& x) { return make::chamfer(x, e, a, 0.7 * w0, 0.7 * w1); }, e.str()});
