@@ -16,7 +16,8 @@ namespace kintsugi::cli {
 
 namespace {
 const char* kHelp =
-    "usage: kintsugi audit [--trials N] [--seed S] [--pass P] [--json] [--save DIR] [--no-shrink]\n\n"
+    "usage: kintsugi audit [--trials N] [--seed S] [--pass P] [--json] [--save DIR] [--no-shrink]\n"
+    "                      [--trace]\n\n"
     "Checks the paper's ordering claim (Table 1, spec/table1.json) on random defective\n"
     "models from the zoo: every base solid, every defect kind, several defects at once,\n"
     "random tolerances, rotations, translations and scales. For each registered pass, each\n"
@@ -37,7 +38,9 @@ const char* kHelp =
     "  --save DIR    write each finding as DIR/<kind>-<pass>-<created>.json (its recipe, the\n"
     "                operation script that rebuilds the model) and .model.json (the native\n"
     "                model); DIR is created if missing, and checked before the run starts\n"
-    "  --no-shrink   keep findings as found\n\n"
+    "  --no-shrink   keep findings as found\n"
+    "  --trace       print each trial's recipe to stderr before it runs (to name a trial that\n"
+    "                hangs or crashes; replay it with kintsugi audit-style recipes in tests)\n\n"
     "Progress goes to stderr. Exit: 0 no counterexample; 1 a counterexample to the order was\n"
     "found; 2 bad usage or a finding that could not be saved.\n";
 
@@ -62,7 +65,7 @@ bool save_finding(const std::string& dir, const std::string& kind, const audit::
 int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args;
   std::string error;
-  if (!args.parse(argv, {"--trials", "--seed", "--pass", "--save"}, {"--json", "--help", "--no-shrink"}, &error)) {
+  if (!args.parse(argv, {"--trials", "--seed", "--pass", "--save"}, {"--json", "--help", "--no-shrink", "--trace"}, &error)) {
     err << "kintsugi audit: " << error << "\n" << kHelp;
     return kExitBadInput;
   }
@@ -119,6 +122,10 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     }
     last = done == total ? -1 : pct;
   };
+  if (args.has("--trace"))
+    o.trace = [&](long trial, const audit::Recipe& r) {
+      err << "trial " << problem_name(r.pass) << " " << trial << ": " << r.to_json().dump() << "\n" << std::flush;
+    };
   audit::Result r = audit::run(o);
   bool saved = true;
   if (auto dir = args.value("--save")) {

@@ -45,7 +45,10 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
     if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
   const Detection before = detect(b, tol);
   for (const Problem& p : before.problems)
-    if (problem_order(p.type) < problem_order(r.pass)) out.precondition = false;
+    if (problem_order(p.type) < problem_order(r.pass)) {
+      out.precondition = false;
+      if (std::find(out.left.begin(), out.left.end(), p.type) == out.left.end()) out.left.push_back(p.type);
+    }
   const std::size_t first = report.problems.size();
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
@@ -155,10 +158,12 @@ Result run(const Options& o) {
     for (long i = 0; i < o.trials; ++i) {
       if (o.progress) o.progress(pass->type, i, o.trials);
       const Recipe r = random_recipe(pass->type, rng);
+      if (o.trace) o.trace(i, r);
       TrialResult t = run_trial(r, o.beautify);
       if (!t.ran) continue;
       if (!t.precondition) {
         res.skipped[idx(pass->type)]++;
+        for (ProblemType left : t.left) res.skipped_by[idx(left)][idx(pass->type)]++;
         continue;
       }
       res.trials[idx(pass->type)]++;
@@ -215,6 +220,7 @@ nlohmann::json to_json(const Result& r) {
                        {"count", r.cells[idx(row)][idx(col)]},
                        {"trials", r.trials[idx(col)]},
                        {"skipped", r.skipped[idx(col)]},
+                       {"skipped_with_row_left", r.skipped_by[idx(row)][idx(col)]},
                        {"pass_registered", find_pass(col) != nullptr},
                        {"if_found", v}});
     }

@@ -26,6 +26,7 @@ struct TrialResult {
   // gone when a pass runs. A trial where some are left (their pass is not built, or
   // refused them) does not meet that precondition: it is counted apart, not judged.
   bool precondition = true;
+  std::vector<ProblemType> left;    // the earlier types still there when the pass ran
   std::vector<Problem> created;     // present after the pass, not before it
   std::string description;          // the injected defects
 };
@@ -59,6 +60,9 @@ struct Options {
   long trials = 200;                       // per pass
   std::optional<ProblemType> pass;         // one pass only
   std::function<void(ProblemType pass, long done, long total)> progress;
+  // Called with each trial's recipe before it runs (kintsugi audit --trace): a trial that
+  // hangs or crashes is then the last one named.
+  std::function<void(long trial, const Recipe& r)> trace;
   bool shrink = true;
   BeautifyOptions beautify;  // passed to every pass (tests break a pass through its hooks)
 };
@@ -74,6 +78,9 @@ struct Result {
   std::array<std::array<long, 11>, 11> cells{};
   std::array<long, 11> trials{};  // trials that ran and met the precondition, per pass
   std::array<long, 11> skipped{}; // trials that ran with earlier problems left, per pass
+  // skipped_by[type][pass]: skipped trials of the pass in which a problem of that earlier
+  // type was left (a trial can count under several types).
+  std::array<std::array<long, 11>, 11> skipped_by{};
   std::vector<Finding> counterexamples;  // one per cell, shrunk
   std::vector<Finding> disagreements;    // one per cell, shrunk
   std::vector<Finding> witnesses;        // one per "Yes" cell reached, shrunk

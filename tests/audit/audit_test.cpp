@@ -142,5 +142,16 @@ TEST(Audit, SavedFindingsReplay) {
   RecordProperty("replayed", n);
 }
 
+// Found by the documented run (`kintsugi audit --pass pinched_face --trials 3000 --seed 2026
+// --trace`, trial 523): detection, measuring a face while pass 4 runs, does not come back
+// (CGAL's constrained triangulation in geo::measure_region, a hundred frames deep). Not
+// fixed yet: disabled so CI does not hang on it; run it with
+// --gtest_also_run_disabled_tests to reproduce.
+TEST(Audit, DISABLED_TrialThatHangsMeasuringAFace) {
+  std::ifstream in(std::string(KINTSUGI_TEST_DATA_DIR) + "/audit_hangs/pinched_face-seed2026-trial523.json");
+  const Recipe r = Recipe::from_json(nlohmann::json::parse(in));
+  EXPECT_TRUE(run_trial(r).ran);
+}
+
 }  // namespace
 }  // namespace kintsugi::audit
