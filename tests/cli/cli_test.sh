@@ -45,7 +45,7 @@ options_of() {  # one per line
     detect) printf '%s\n' "--tol T" "--json" ;;
     beautify) printf '%s\n' "--tol T" "-o OUT" "--report R.json" ;;
     demo) ;;
-    audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" ;;
+    audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" "--trace" ;;
     convert) printf '%s\n' "IN OUT" ;;
     measure) printf '%s\n' "--json" "--tol T" ;;
     view) printf '%s\n' "--tol T" "--chordal C" "-o PAGE.html" "--png" ;;
