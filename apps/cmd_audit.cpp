@@ -39,8 +39,8 @@ const char* kHelp =
     "                operation script that rebuilds the model) and .model.json (the native\n"
     "                model); DIR is created if missing, and checked before the run starts\n"
     "  --no-shrink   keep findings as found\n"
-    "  --trace       print each trial's recipe to stderr before it runs (to name a trial that\n"
-    "                hangs or crashes; replay it with kintsugi audit-style recipes in tests)\n\n"
+    "  --trace       print each trial's recipe to stderr before it runs, so a trial that\n"
+    "                hangs or crashes is the last one named (its recipe rebuilds the model)\n\n"
     "Progress goes to stderr. Exit: 0 no counterexample; 1 a counterexample to the order was\n"
     "found; 2 bad usage or a finding that could not be saved.\n";
 
