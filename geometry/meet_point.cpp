@@ -57,22 +57,12 @@ Vec3 min_norm_step(const Linearised& l, double cut, int& rank) {
 // a direction the normals span with singular value σ ≫ cut is solved fully, one with
 // σ ≪ cut (the surfaces meet along it, or nearly so) keeps the guess; at a solution it
 // shifts the point by about cut²·|x − guess|/σ, far below the precision.
-struct NearGuess {
-  Vec3 guess;
-  double w;
-  template <typename T>
-  bool operator()(const T* x, T* r) const {
-    for (int i = 0; i < 3; ++i) r[i] = T(w) * (x[i] - guess[i]);
-    return true;
-  }
-};
-
 Vec3 solve_curved(const std::vector<Surface>& surfaces, const Vec3& guess, double cut) {
   double x[3] = {guess.x(), guess.y(), guess.z()};
   const double unit = 1.0;
   ceres::Problem problem;
   for (const Surface& s : surfaces) problem.AddResidualBlock(new OnFixedSurface(s, &unit), nullptr, x);
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NearGuess, 3, 3>(new NearGuess{guess, cut}), nullptr, x);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NearPoint, 3, 3>(new NearPoint{guess, cut}), nullptr, x);
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = 100;

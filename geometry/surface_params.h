@@ -96,6 +96,18 @@ T surface_distance(SurfaceKind kind, T const* const* q, const T* x) {
 ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool variable_point, const Vec3& fixed_point,
                                        const double* w, std::vector<double*>& blocks);
 
+// Prior w·(x − p0) keeping a variable point (one block of 3) near p0: a vertex near where
+// its repair put it (the region solve), a meeting point near its guess (meet_point).
+struct NearPoint {
+  Vec3 p0;
+  double w;
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    for (int i = 0; i < 3; ++i) r[i] = T(w) * (x[i] - p0[i]);
+    return true;
+  }
+};
+
 // Residual w·d of a variable point (one block of 3) on a fixed surface of any type,
 // free-form ones included: the derivative of the signed distance is the unit normal at
 // the nearest point.

@@ -101,16 +101,6 @@ using geo::surface_from;
 using geo::SurfaceParams;
 using Kind = geo::SurfaceKind;
 
-// Prior: a vertex near where the repair put it.
-struct Stay {
-  geo::Vec3 p0;
-  double w;
-  template <typename T>
-  bool operator()(const T* p, T* r) const {
-    for (int i = 0; i < 3; ++i) r[i] = T(w) * (p[i] - p0[i]);
-    return true;
-  }
-};
 
 double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   double m = 0.0;
@@ -295,7 +285,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
       }
     for (std::size_t i = 0; i < vlist.size(); ++i)
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Stay, 3, 3>(new Stay{b.point(vlist[i]), w_prior}),
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{b.point(vlist[i]), w_prior}),
                                nullptr, points[i].data());
     for (std::size_t k = 0; k < constraints.size(); ++k) {
       if (k == skip) continue;
