@@ -51,6 +51,29 @@ double ellipse_speed(const Ellipse& e, double t) {
   return std::hypot(e.major_radius * std::sin(t), e.minor_radius * std::cos(t));
 }
 
+// Largest distance of the ellipse arc over [ta, tb] (a span under π) from its chord.
+// It is reached where the tangent (-a sin t, b cos t) is parallel to the chord (dx, dy),
+// i.e. a sin t dy + b cos t dx = 0: t = atan2(-b dx, a dy) + kπ; Rolle puts one of these
+// inside the span.
+double ellipse_sagitta(double a, double b, double ta, double tb) {
+  const double x0 = a * std::cos(ta), y0 = b * std::sin(ta);
+  const double dx = a * std::cos(tb) - x0, dy = b * std::sin(tb) - y0;
+  const double len = std::hypot(dx, dy);
+  if (!(len > 0)) return 0.0;
+  const double lo = std::min(ta, tb), hi = std::max(ta, tb);
+  double worst = 0.0;
+  const double base = std::atan2(-b * dx, a * dy);
+  for (int k = 0; k < 2; ++k) {
+    // The stationary point base + kπ, moved into [lo, lo + 2π).
+    double t = base + k * M_PI;
+    t = lo + std::fmod(std::fmod(t - lo, 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+    if (t > hi) continue;
+    const double px = a * std::cos(t) - x0, py = b * std::sin(t) - y0;
+    worst = std::max(worst, std::abs(dx * py - dy * px) / len);
+  }
+  return worst;
+}
+
 // Nearest parameter on an ellipse to the in-plane point (x, y): coarse scan, then
 // safeguarded Newton on D'(t) = (E(t) - q)·E'(t) inside the best scan interval.
 double ellipse_parameter(const Ellipse& e, double x, double y) {
@@ -84,6 +107,49 @@ double ellipse_parameter(const Ellipse& e, double x, double y) {
     t = next;
   }
   return wrap_angle(t);
+}
+
+// An ellipse's curvature radius runs from b²/a at the ends of its major axis to a²/b at
+// the ends of its minor one: a uniform step fine enough for the tightest end puts
+// millions of points on a flat ellipse (a = 6360, b = 0.03, met as the section of a
+// nearly tangent cylinder, sampled 2^20 times and then hung the triangulation of its
+// face). Instead each piece is halved until its sagitta is within the error: pieces stay
+// long where the ellipse is flat and short only round its tips.
+std::vector<Vec3> sample_ellipse(const Ellipse& e, double t0, double t1, double eps, std::size_t max_pieces) {
+  const double a = e.major_radius, b = e.minor_radius;
+  // Start from pieces that each lie in one quadrant of the ellipse (cut at its vertices,
+  // t = kπ/2) and span at most π/4. Within a quadrant the tangent turns by at most 90°, so
+  // the arc lies in the triangle of its chord and end tangents, whose base angles are
+  // acute: every point of the arc projects inside the chord, and the distance from the
+  // chord's line (ellipse_sagitta) is the distance from the polyline's segment.
+  std::vector<double> cuts{t0};
+  const double dir = t1 >= t0 ? 1.0 : -1.0;
+  for (double k = std::floor(dir * t0 / (M_PI / 2)) + 1; k * (M_PI / 2) < dir * t1; k += 1) cuts.push_back(dir * k * (M_PI / 2));
+  cuts.push_back(t1);
+  std::vector<std::pair<double, double>> first;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+    const int n = static_cast<int>(std::max(1.0, std::ceil(std::abs(cuts[c + 1] - cuts[c]) / (M_PI / 4))));
+    for (int i = 0; i < n; ++i)
+      first.emplace_back(cuts[c] + (cuts[c + 1] - cuts[c]) * i / n, cuts[c] + (cuts[c + 1] - cuts[c]) * (i + 1) / n);
+  }
+  std::vector<double> ts{t0};
+  std::vector<std::pair<double, double>> stack(first.rbegin(), first.rend());  // last = next in order
+  while (!stack.empty()) {
+    const auto [ta, tb] = stack.back();
+    stack.pop_back();
+    const double tm = 0.5 * (ta + tb);
+    const bool can_halve = tm != ta && tm != tb && ts.size() + stack.size() < max_pieces;
+    if (can_halve && ellipse_sagitta(a, b, ta, tb) > eps) {
+      stack.emplace_back(tm, tb);
+      stack.emplace_back(ta, tm);
+    } else {
+      ts.push_back(tb);
+    }
+  }
+  std::vector<Vec3> out;
+  out.reserve(ts.size());
+  for (double t : ts) out.push_back(ellipse_at(e, t));
+  return out;
 }
 
 }  // namespace
@@ -266,28 +332,23 @@ std::vector<Vec3> sample_curve(const Curve& c, double t0, double t1, double chor
     return out;
   }
   if (std::holds_alternative<BSplineCurve>(c)) return require_freeform().curve_sample(c, t0, t1, chordal_error);
-  // Largest curvature, then the angle step whose sagitta stays within the error.
-  double kappa_r = 0.0;  // radius of the tightest curvature
-  double speed = 1.0;    // largest |C'(t)|
-  if (std::holds_alternative<Line>(c)) {
-    return {evaluate(c, t0), evaluate(c, t1)};
-  } else if (const auto* k = std::get_if<Circle>(&c)) {
-    kappa_r = std::abs(k->radius);
-    speed = kappa_r;
-  } else if (const auto* e = std::get_if<Ellipse>(&c)) {
-    kappa_r = e->minor_radius * e->minor_radius / e->major_radius;
-    speed = std::max(e->major_radius, e->minor_radius);
-  } else {
-    no_geometry();
-  }
-  const double eps = std::max(chordal_error, 1e-15 * speed);
-  // Chord of length h on a circle of radius ρ has sagitta ≈ h²/(8ρ).
-  const double h = eps < kappa_r ? std::sqrt(8.0 * eps * kappa_r) : kappa_r;
+  if (std::holds_alternative<Line>(c)) return {evaluate(c, t0), evaluate(c, t1)};
   // At most 2^20 pieces: a full circle so sampled is within 5e-12 of its radius, finer
   // than any modelling precision we use, and a tiny error asked of a large curve cannot
   // make an unbounded allocation.
   constexpr double kMaxPieces = double(1 << 20);
-  const int n = static_cast<int>(std::clamp(std::ceil(std::abs(t1 - t0) * speed / h), 1.0, kMaxPieces));
+  if (const auto* e = std::get_if<Ellipse>(&c)) {
+    const double eps = std::max(chordal_error, 1e-15 * std::max(e->major_radius, e->minor_radius));
+    return sample_ellipse(*e, t0, t1, eps, static_cast<std::size_t>(kMaxPieces));
+  }
+  const auto* k = std::get_if<Circle>(&c);
+  if (!k) no_geometry();
+  // Constant curvature: a uniform step, the one whose sagitta stays within the error
+  // (a chord of length h on a circle of radius ρ has sagitta ≈ h²/(8ρ)).
+  const double rho = std::abs(k->radius);
+  const double eps = std::max(chordal_error, 1e-15 * rho);
+  const double h = eps < rho ? std::sqrt(8.0 * eps * rho) : rho;
+  const int n = static_cast<int>(std::clamp(std::ceil(std::abs(t1 - t0) * rho / h), 1.0, kMaxPieces));
   for (int i = 0; i <= n; ++i) out.push_back(evaluate(c, t0 + (t1 - t0) * i / n));
   return out;
 }

@@ -49,7 +49,9 @@ double curve_length(const Curve& c);
 
 // Points along [t0, t1] (in that order, both ends included) such that the polyline
 // through them is within `chordal_error` of the curve (at most 2^20 pieces, which is
-// within 5e-12 of a full circle's radius: a tighter error is not met).
+// within 5e-12 of a full circle's radius: a tighter error is not met). Circles are
+// sampled uniformly; an ellipse's pieces are as long as its local curvature allows, so a
+// flat ellipse costs points only round its tips.
 std::vector<Vec3> sample_curve(const Curve& c, double t0, double t1, double chordal_error);
 
 }  // namespace kintsugi::geo
