@@ -147,16 +147,28 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
   }
   CDT cdt;
   try {
+    // All boundary points first, then the sides between them as constraints: CGAL
+    // inserts the points in spatial-sort order. Inserting each polygon as one constraint
+    // polyline puts its points in one at a time along the boundary, and every insertion
+    // next to a long thin run of earlier ones flips a cascade of edges: a B-spline face
+    // with a densely sampled boundary spent most of detection there, and 2^20 points on one
+    // flat ellipse took minutes.
+    std::vector<K::Point_2> pts;
+    std::vector<std::pair<std::size_t, std::size_t>> sides;
     for (const auto& poly : domain.polygons) {
-      std::vector<K::Point_2> pts;
+      const std::size_t first = pts.size();
       for (const Vec2& p : poly) {
         const K::Point_2 q(p.x(), p.y());
-        if (pts.empty() || pts.back() != q) pts.push_back(q);
+        if (pts.size() == first || pts.back() != q) pts.push_back(q);
       }
-      while (pts.size() > 1 && pts.front() == pts.back()) pts.pop_back();
-      if (pts.size() < 3) continue;
-      cdt.insert_constraint(pts.begin(), pts.end(), /*close=*/true);
+      while (pts.size() > first + 1 && pts[first] == pts.back()) pts.pop_back();
+      if (pts.size() < first + 3) {
+        pts.resize(first);
+        continue;
+      }
+      for (std::size_t i = first; i < pts.size(); ++i) sides.emplace_back(i, i + 1 < pts.size() ? i + 1 : first);
     }
+    cdt.insert_constraints(pts.begin(), pts.end(), sides.begin(), sides.end());
   } catch (const std::exception& e) {
     out.problem = std::string("could not triangulate the region in parameter space: ") + e.what();
     return out;

@@ -27,4 +27,9 @@ struct Box {
   }
 };
 
+// Distance between two boxes (0 where they overlap): no point of one is nearer the other.
+inline double box_gap(const Box& a, const Box& b) {
+  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(0.0).norm();
+}
+
 }  // namespace kintsugi::geo

@@ -1,9 +1,12 @@
 #include "geometry/distance.h"
 
+#include "geometry/box.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 namespace kintsugi::geo {
 
@@ -71,6 +74,30 @@ ClosestPair point_polyline(const Vec3& p, const std::vector<Vec3>& polyline) {
   return best;
 }
 
+namespace {
+
+// A run of consecutive segments of a polyline and its bounding box.
+struct Chunk {
+  std::size_t first, last;  // segments [first, last)
+  Box box;
+};
+
+// Segments are grouped in runs of kChunk; the box of a run bounds every segment in it.
+constexpr std::size_t kChunk = 32;
+
+std::vector<Chunk> chunks(const std::vector<Vec3>& p, std::size_t segments) {
+  std::vector<Chunk> out;
+  for (std::size_t i = 0; i < segments; i += kChunk) {
+    Chunk c{i, std::min(segments, i + kChunk), {}};
+    for (std::size_t k = c.first; k <= c.last && k < p.size(); ++k) c.box.add(p[k]);
+    out.push_back(c);
+  }
+  return out;
+}
+
+
+}  // namespace
+
 ClosestPair polyline_polyline(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   if (a.empty() || b.empty()) throw std::invalid_argument("polyline_polyline: a polyline has no points");
   // Treat a single point as a zero-length segment.
@@ -79,31 +106,47 @@ ClosestPair polyline_polyline(const std::vector<Vec3>& a, const std::vector<Vec3
     s0 = p[i];
     s1 = p[std::min(i + 1, p.size() - 1)];
   };
-  struct Sphere {
-    Vec3 c;
-    double r;
+  // Boundaries sampled at a thousandth of the tolerance have thousands of segments:
+  // every pair would be 10^8 segment tests for two circles. Runs of segments are paired
+  // first, nearest boxes first, and a pair of runs is opened only while its boxes are
+  // no farther apart than the best distance so far: close to linear for polylines that
+  // come close in few places.
+  const std::vector<Chunk> ca = chunks(a, na), cb = chunks(b, nb);
+  struct RunPair {
+    double gap;
+    std::size_t x, y;
   };
-  std::vector<Sphere> sb(nb);
-  for (std::size_t j = 0; j < nb; ++j) {
-    Vec3 q0, q1;
-    seg(b, j, q0, q1);
-    sb[j] = {0.5 * (q0 + q1), 0.5 * (q1 - q0).norm()};
-  }
+  std::vector<RunPair> order;
+  order.reserve(ca.size() * cb.size());
+  for (std::size_t x = 0; x < ca.size(); ++x)
+    for (std::size_t y = 0; y < cb.size(); ++y) order.push_back({box_gap(ca[x].box, cb[y].box), x, y});
+  std::sort(order.begin(), order.end(), [](const RunPair& l, const RunPair& r) {
+    return l.gap != r.gap ? l.gap < r.gap : std::tie(l.x, l.y) < std::tie(r.x, r.y);
+  });
   ClosestPair best;
   best.distance = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < na; ++i) {
-    Vec3 p0, p1;
-    seg(a, i, p0, p1);
-    const Vec3 ca = 0.5 * (p0 + p1);
-    const double ra = 0.5 * (p1 - p0).norm();
-    for (std::size_t j = 0; j < nb; ++j) {
-      if ((ca - sb[j].c).norm() - ra - sb[j].r >= best.distance) continue;
-      Vec3 q0, q1;
-      seg(b, j, q0, q1);
-      ClosestPair c = segment_segment(p0, p1, q0, q1);
-      if (c.distance < best.distance) {
-        best = c;
-        best.segment_a = i, best.segment_b = j;
+  // Among equally near pairs the first in (i, j) order wins, whatever order the runs
+  // are opened in: the answer is the one a scan of all pairs gives.
+  auto better = [&](const ClosestPair& c, std::size_t i, std::size_t j) {
+    if (c.distance != best.distance) return c.distance < best.distance;
+    return std::tie(i, j) < std::tie(best.segment_a, best.segment_b);
+  };
+  for (const RunPair& rp : order) {
+    if (rp.gap > best.distance) break;  // every later pair of runs is farther still
+    for (std::size_t i = ca[rp.x].first; i < ca[rp.x].last; ++i) {
+      Vec3 p0, p1;
+      seg(a, i, p0, p1);
+      const Vec3 mid = 0.5 * (p0 + p1);
+      const double ra = 0.5 * (p1 - p0).norm();
+      for (std::size_t j = cb[rp.y].first; j < cb[rp.y].last; ++j) {
+        Vec3 q0, q1;
+        seg(b, j, q0, q1);
+        if ((mid - 0.5 * (q0 + q1)).norm() - ra - 0.5 * (q1 - q0).norm() > best.distance) continue;
+        ClosestPair c = segment_segment(p0, p1, q0, q1);
+        if (better(c, i, j)) {
+          best = c;
+          best.segment_a = i, best.segment_b = j;
+        }
       }
     }
   }

@@ -25,8 +25,9 @@ ClosestPair segment_segment(const Vec3& p0, const Vec3& p1, const Vec3& q0, cons
 // Nearest point of a polyline (≥ 1 point) to p; segment_b / t locate it on the polyline.
 ClosestPair point_polyline(const Vec3& p, const std::vector<Vec3>& polyline);
 // Nearest points of two polylines (each ≥ 1 point). Exact (up to rounding) over all
-// segment pairs, with pairs skipped when their bounding spheres are already farther
-// than the best distance found.
+// segment pairs; runs of segments whose boxes are farther apart than the best distance
+// found are skipped, so long polylines that come close in few places cost about their
+// length. Among equally near pairs, the first in segment order (a's, then b's).
 ClosestPair polyline_polyline(const std::vector<Vec3>& a, const std::vector<Vec3>& b);
 
 }  // namespace kintsugi::geo

@@ -53,6 +53,14 @@ struct Tolerances {
   static constexpr double kMeasureChordalRatio = 1e-3;
   double measure_chordal() const { return kMeasureChordalRatio * length; }
 
+  // Chordal error of detection's first, coarse measure of a face: 0.05 · length (about
+  // seven times fewer boundary points than measure_chordal()). The face is measured again
+  // at measure_chordal() unless the coarse measure, widened by its error bound, already
+  // decides that it is neither small nor a sliver (repair/detect.cpp): the decisions are
+  // the fine measure's.
+  static constexpr double kCoarseMeasureChordalRatio = 0.05;
+  double coarse_measure_chordal() const { return kCoarseMeasureChordalRatio * length; }
+
   // Chordal error of the boundary points that are compared with a surface (does a face
   // have the same geometry as its neighbour; how far a repaired edge is from its faces):
   // 0.1 · length. A point of the sampled boundary is then within 0.1 · length of the true

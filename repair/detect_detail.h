@@ -71,6 +71,8 @@ class DetectContext {
   Marks marks_edges() const { return Marks(b.edge_slots(), whole); }
 
  private:
+  FaceInfo measure(FaceH f) const;  // coarse first, finely where that cannot decide
+
   mutable std::vector<FaceInfo> face_dense_;
   mutable std::vector<std::uint8_t> face_done_;
   mutable std::vector<double> length_dense_;

@@ -3,6 +3,8 @@
 #include "generators.h"
 
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <limits>
 #include <rapidcheck/gtest.h>
 
 namespace kintsugi::geo {
@@ -49,6 +51,41 @@ RC_GTEST_PROP(DistanceProperty, PolylineDistanceIsNoMoreThanAnySampledPair, ()) 
   };
   for (int i = 0; i <= 40; ++i)
     for (int j = 0; j <= 40; ++j) RC_ASSERT(c.distance <= (at(a, i / 40.0) - at(b, j / 40.0)).norm() + 1e-12);
+}
+
+// Every pair of segments, in order: what polyline_polyline must agree with.
+ClosestPair brute_force(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  ClosestPair best;
+  best.distance = std::numeric_limits<double>::infinity();
+  const std::size_t na = std::max<std::size_t>(1, a.size() - 1), nb = std::max<std::size_t>(1, b.size() - 1);
+  for (std::size_t i = 0; i < na; ++i)
+    for (std::size_t j = 0; j < nb; ++j) {
+      const ClosestPair c = segment_segment(a[i], a[std::min(i + 1, a.size() - 1)], b[j], b[std::min(j + 1, b.size() - 1)]);
+      if (c.distance < best.distance) best = c, best.segment_a = i, best.segment_b = j;
+    }
+  return best;
+}
+
+// Long polylines (runs of many segments, as sampled boundaries are): a random walk
+// against a sampled helix or a copy of itself moved a little, so that the runs' boxes
+// overlap in many places and ties (a copy) occur.
+RC_GTEST_PROP(DistanceProperty, LongPolylinesAgreeWithEveryPair, ()) {
+  std::vector<Vec3> a{testing::gen_vec(5.0)};
+  const int na = *rc::gen::inRange(1, 400);
+  for (int i = 0; i < na; ++i) a.push_back(a.back() + 0.2 * testing::gen_vec(1.0));
+  std::vector<Vec3> b;
+  if (*rc::gen::arbitrary<bool>()) {
+    const Vec3 shift = testing::gen_vec(0.5);
+    for (const Vec3& p : a) b.push_back(p + shift);
+  } else {
+    const int nb = *rc::gen::inRange(1, 400);
+    const double r = testing::gen_real(0.5, 4.0);
+    for (int i = 0; i <= nb; ++i) b.emplace_back(r * std::cos(0.1 * i), r * std::sin(0.1 * i), 0.02 * i);
+  }
+  const ClosestPair fast = polyline_polyline(a, b), all = brute_force(a, b);
+  RC_ASSERT(fast.distance == all.distance);
+  RC_ASSERT(fast.segment_a == all.segment_a);
+  RC_ASSERT(fast.segment_b == all.segment_b);
 }
 
 RC_GTEST_PROP(DistanceProperty, InvariantUnderRigidMotionAndScales, ()) {
