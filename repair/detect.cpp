@@ -19,7 +19,6 @@ DetectContext::DetectContext(const Body& body, const geo::Tolerances& t, Scope s
   }
 }
 
-namespace {
 FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double chordal) {
   FaceInfo fi;
   std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, chordal);
@@ -31,7 +30,6 @@ FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double
   fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < tol.length;
   return fi;
 }
-}  // namespace
 
 // Most faces are far from small and far from thin: a boundary sampled at 0.05 · length
 // tells them apart as surely as one at 0.001 · length, with a seventh of the points

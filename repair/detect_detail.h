@@ -23,6 +23,10 @@ struct FaceInfo {
   bool sliver = false;  // area / bbox diagonal < tol, and not small
 };
 
+// A face measured with its boundary sampled at `chordal` (no coarse first pass): the
+// reference DetectContext::face() decides as.
+FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double chordal);
+
 // The elements detection starts from. Each detector starts only from elements of its
 // anchor kind (spec/problems.md, "Detecting near a repair"): faces for face problems and
 // pinching, edges for short edges and same geometry, vertices for mergeable edges,

@@ -5,6 +5,7 @@
 #include "kernel/builders.h"
 #include "kernel/euler.h"
 #include "repair/detect.h"
+#include "repair/detect_detail.h"
 #include "zoo/defects.h"
 #include "zoo/zoo.h"
 
@@ -13,6 +14,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <set>
 
@@ -197,6 +199,39 @@ RC_GTEST_PROP(Detect, InjectedDefectIsFoundWhereItWasPut, ()) {
     if (p.type == type)
       for (const auto& e : element_names(p)) found = found || named.count(e);
   if (!found) RC_FAIL(std::string("injected ") + problem_name(type) + " (" + inj->description + ") not reported:\n" + describe(d));
+}
+
+// Detection measures each face coarsely first and finely only where the coarse measure,
+// widened by its error bound, cannot decide (DetectContext::measure). Its decisions must
+// be the fine measure's, above all near the thresholds: the tolerance is taken at one of
+// the face's own thresholds (√area: small; area / diagonal: sliver) times a factor near 1,
+// on curved bases with a defect injected (small faces, slivers, gaps' new faces, ...).
+RC_GTEST_PROP(Detect, CoarseFirstMeasureDecidesAsTheFineOne, ()) {
+  const int which = *rc::gen::inRange(0, 5);
+  Body b = which == 0 ? build::cylinder(1, 2)
+         : which == 1 ? build::cone(1, 2)
+         : which == 2 ? build::sphere(1)
+         : which == 3 ? build::torus(3, 1)
+                      : zoo::paper_object(10, true).body;
+  const ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
+  std::string error;
+  RC_PRE(zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, 0.02, &error).has_value());
+  const std::vector<FaceH> faces = b.faces();
+  const FaceH f = faces[*rc::gen::inRange<std::size_t>(0, faces.size())];
+  const detail::FaceInfo at = detail::measure_face(b, f, tol_for(b, 0.02), tol_for(b, 0.02).measure_chordal());
+  RC_PRE(at.measured && at.area > 0 && at.bbox_diagonal > 0);
+  const double threshold = *rc::gen::arbitrary<bool>() ? std::sqrt(at.area) : at.area / at.bbox_diagonal;
+  const double t = threshold * (0.9 + 0.2 * *rc::gen::inRange(0, 1001) / 1000.0);
+  const geo::Tolerances tol = tol_for(b, t);
+  const detail::FaceInfo fine = detail::measure_face(b, f, tol, tol.measure_chordal());
+  const detail::DetectContext c(b, tol, detail::Scope{{f}, {}, {}, {}}, false);
+  const detail::FaceInfo& got = c.face(f);
+  RC_LOG() << "face " << f.str() << " of " << faces.size() << ", " << problem_name(type) << " injected, t " << t
+           << "; fine area " << fine.area << " diagonal " << fine.bbox_diagonal << " small " << fine.small << " sliver "
+           << fine.sliver << "; got small " << got.small << " sliver " << got.sliver << "\n";
+  RC_ASSERT(got.measured == fine.measured);
+  RC_ASSERT(got.small == fine.small);
+  RC_ASSERT(got.sliver == fine.sliver);
 }
 
 // The same model and tolerance scaled by k: the same report, measures scaled by k (or k²).
