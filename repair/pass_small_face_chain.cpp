@@ -237,17 +237,18 @@ std::string repair_small_face_chain(RepairContext& c) {
         if (!met(pv) || !met(pw)) continue;
         if ((pv.point - pw.point).norm() > 10 * c.tol.precision) {
           // A vertex on two faces only takes the point of their meeting curve nearest its
-          // face's centroid, which can stop a hair short of where its neighbour's faces
-          // meet (a pyramid's apex cut off by two small faces: the second vertex came to
-          // rest 0.1 tolerance down an edge). When all their faces together meet in one
-          // point, within the tolerance of both, that point is the corner: keeping two
-          // vertices left a short edge at the corner's tip, which pass 4 then saw as a
-          // spike — a pinched face created behind its pass (the Table 1 audit's
-          // counterexample small_face_chain -> pinched_face).
+          // face's centroid, which can stop short of where its neighbour's faces meet (a
+          // pyramid's apex cut off by two small faces: the second vertex came to rest 0.1
+          // tolerance down an edge). When the edge between them would be shorter than the
+          // tolerance and all their faces together meet in one point (within the
+          // tolerance, as a gap's faces must; the region solve then makes it exact), that
+          // point is the corner: keeping two vertices left a short edge at the corner's
+          // tip, which pass 4 then saw as a spike — a pinched face created behind its pass
+          // (the Table 1 audit's counterexamples small_face_chain -> pinched_face, once on
+          // the exact pyramid, once after a pinch repair had moved its planes by a hair).
+          if ((pv.point - pw.point).norm() >= c.tol.length) continue;
           auto pu = geo::meet_point(both, 0.5 * (pv.point + pw.point), c.tol.length, c.tol.precision);
-          const bool corner = met(pu) && pu.status != geo::MeetStatus::underdetermined &&
-                              pu.residual <= 10 * c.tol.precision && (pu.point - pv.point).norm() <= c.tol.length &&
-                              (pu.point - pw.point).norm() <= c.tol.length;
+          const bool corner = pu.status == geo::MeetStatus::exact || pu.status == geo::MeetStatus::least_squares;
           if (!corner) continue;
         }
         auto r = euler::kev(b, h);
