@@ -14,6 +14,7 @@
 // origin stays meaningful and a cylinder cannot slide along itself.)
 #pragma once
 
+#include "geometry/surface.h"
 #include "geometry/types.h"
 
 #include <ceres/ceres.h>
@@ -110,15 +111,18 @@ struct NearPoint {
 
 // Residual w·d of a variable point (one block of 3) on a fixed surface of any type,
 // free-form ones included: the derivative of the signed distance is the unit normal at
-// the nearest point.
+// the nearest point. On a free-form surface the foot is followed from the last
+// evaluation's (see foot()); one residual object serves one solve.
 class OnFixedSurface final : public ceres::SizedCostFunction<1, 3> {
  public:
   OnFixedSurface(const Surface& s, const double* w) : s_(s), w_(w) {}
   bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override;
 
  private:
+  SurfacePoint foot(const Vec3& p) const;
   Surface s_;
   const double* w_;
+  mutable std::optional<Vec2> last_uv_;  // the last foot's parameters (free-form surfaces)
 };
 
 }  // namespace kintsugi::geo

@@ -4,6 +4,8 @@
 // checker, and come out of beautify unchanged when nothing is wrong with them. Without
 // the backend, the native reader refuses them, saying why.
 #include "geometry/freeform.h"
+#include "geometry/surface.h"
+#include "geometry/surface_params.h"
 #include "invariants/element_geometry.h"
 #include "invariants/geometry_check.h"
 #include "invariants/region_validity.h"
@@ -75,6 +77,39 @@ void expect_valid(const Body& b, const std::string& name) {
   for (const Violation& v : region_violations(b, whole_body(b), tol, 1e-7)) ADD_FAILURE() << name << ": " << to_string(v);
   io::OcctVerdict o = io::occt_check(b);
   EXPECT_TRUE(o.valid) << name << ": " << (o.problems.empty() ? "" : o.problems.front());
+}
+
+// A Ceres residual "point on a fixed free-form surface" follows its foot from the last
+// evaluation (Gauss-Newton) instead of projecting globally every time: along a path of
+// points off the prism's B-spline side (as a solve's iterates move), its distance is the
+// global projection's.
+TEST(FreeForm, FollowedFootGivesTheGlobalDistance) {
+  Body b = read(prism(), "follow_prism");
+  FaceH side;
+  for (FaceH f : b.faces())
+    if (geo::is_freeform(b.surface(f))) side = f;
+  ASSERT_TRUE(side.valid());
+  const geo::Surface& s = b.surface(side);
+  const double w = 1.0;
+  geo::OnFixedSurface residual(s, &w);
+  // Points 0.05-0.3 off the side, walking along it in small steps, then jumping back.
+  int compared = 0;
+  for (int k = 0; k <= 60; ++k) {
+    const double t = k <= 40 ? k / 40.0 : (60 - k) / 20.0;
+    const geo::Vec3 on = geo::evaluate(s, geo::Vec2(0.1 + 0.8 * t * 1.0, 0.5 + 4.0 * t));
+    const geo::SurfacePoint at = geo::closest_point(s, on);
+    const geo::Vec3 p = on + (0.05 + 0.25 * t) * at.normal;
+    const double x[3] = {p.x(), p.y(), p.z()};
+    const double* params[1] = {x};
+    double r = 0, jac[3];
+    double* jacs[1] = {jac};
+    ASSERT_TRUE(residual.Evaluate(params, &r, jacs));
+    const geo::SurfacePoint global = geo::closest_point(s, p);
+    EXPECT_NEAR(r, global.distance, 1e-9) << "point " << k;
+    EXPECT_NEAR(geo::Vec3(jac[0], jac[1], jac[2]).dot(global.normal), 1.0, 1e-9) << "point " << k;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 61);
 }
 
 TEST(FreeForm, PrismOnABSplineProfileIsReadExactly) {
