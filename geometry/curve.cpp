@@ -122,9 +122,16 @@ std::vector<Vec3> sample_ellipse(const Ellipse& e, double t0, double t1, double 
   // the arc lies in the triangle of its chord and end tangents, whose base angles are
   // acute: every point of the arc projects inside the chord, and the distance from the
   // chord's line (ellipse_sagitta) is the distance from the polyline's segment.
+  if (!(std::abs(t1 - t0) <= double(max_pieces) * (M_PI / 4))) {
+    // A span of that many turns: max_pieces even pieces, as bounded as any request.
+    std::vector<Vec3> out;
+    for (std::size_t i = 0; i <= max_pieces; ++i) out.push_back(ellipse_at(e, t0 + (t1 - t0) * double(i) / double(max_pieces)));
+    return out;
+  }
   std::vector<double> cuts{t0};
   const double dir = t1 >= t0 ? 1.0 : -1.0;
-  for (double k = std::floor(dir * t0 / (M_PI / 2)) + 1; k * (M_PI / 2) < dir * t1; k += 1) cuts.push_back(dir * k * (M_PI / 2));
+  for (double k = std::floor(dir * t0 / (M_PI / 2)) + 1; k * (M_PI / 2) < dir * t1; k += 1)
+    cuts.push_back(dir * k * (M_PI / 2));
   cuts.push_back(t1);
   std::vector<std::pair<double, double>> first;
   for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {

@@ -94,6 +94,8 @@ TEST(Curve, SamplingAFlatEllipseCostsPointsOnlyAtItsTip) {
     EXPECT_TRUE(pts.back().isApprox(evaluate(e, -3.1151327818207828)));
     EXPECT_LE(polyline_error(e, -3.1415925594000238, -3.1151327818207828, pts), eps) << eps;
   }
+  // A span of a billion turns is bounded like any request (2^20 pieces at most).
+  EXPECT_LE(sample_curve(e, 0.0, 2e9 * kTwoPi, 1e-3).size(), std::size_t((1 << 20) + 2));
   // Whole and backwards, across both tips.
   const std::vector<Vec3> whole = sample_curve(e, kTwoPi, 0.0, 1e-3);
   EXPECT_LT(whole.size(), 2000u);
