@@ -35,7 +35,8 @@ void write_model(const Model& model, const std::string& path, const std::string&
 // beautify) the tolerance the model suggests (repair/suggest_tolerance.h), else 1e-3 x the
 // model size (check: directly). `tolerance_note`, when given, is set to what the CLI says
 // on stderr about where the tolerance came from ("" when `tol` was given). When the model
-// suggests no tolerance, beautify repairs nothing and says so in the note.
+// suggests no tolerance to trust (ToleranceSuggestion::trusted), beautify repairs nothing
+// and says so in the note.
 nlohmann::json check(const Model& model, std::optional<double> tol = std::nullopt, bool with_occt = false);
 // `with_suggestion`: the document also holds "suggested_tolerance" (detect --suggest-tol).
 nlohmann::json detect(const Model& model, std::optional<double> tol = std::nullopt,

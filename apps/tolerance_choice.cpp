@@ -53,11 +53,11 @@ std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<do
   }
   if (suggest) {
     ToleranceSuggestion s = suggest_tolerance(m.body);
-    if (s.usable())
+    if (s.trusted())
       return ToleranceChoice{geo::Tolerances::for_model(s.tolerance, size),
                              "the model's own suggestion (confidence " + s.confidence + ": " + s.explanation + ")", true};
     return ToleranceChoice{geo::Tolerances::default_for_model(size),
-                           "default (1e-3 x model size), not trusted: the model suggests no tolerance (" + s.explanation + ")",
+                           "default (1e-3 x model size), not trusted: the model suggests no tolerance to trust (confidence " + s.confidence + ": " + s.explanation + ")",
                            false};
   }
   return ToleranceChoice{geo::Tolerances::default_for_model(size), "default (1e-3 x model size)"};

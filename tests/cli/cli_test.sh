@@ -157,6 +157,25 @@ expect 2 "detect nan tolerance" -- "$K" detect "$dir/box.json" --tol nan
 expect 0 "detect default tolerance" -- "$K" detect "$dir/box.json"
 contains "tolerance" "the default tolerance is said"
 
+# Without --tol or meta.tolerance, detect and beautify use the tolerance the model
+# suggests and say so: paper object 4's sliver (0.32 wide) is far below its faces (7).
+# Where no gap stands out (paper object 10: defects up to 0.49, features from 1.25),
+# beautify repairs nothing and says why.
+"$K" generate paper-4 -o "$dir/p4.json" >/dev/null 2>&1
+sed 's/"tolerance": 0.5/"tolerance_was": 0.5/' "$dir/p4.json" >"$dir/p4-untold.json"
+expect 0 "detect --suggest-tol" -- "$K" detect "$dir/p4-untold.json" --suggest-tol
+contains "confidence high" "the suggestion's confidence is said"
+contains "spurious  0.319992  face f6 (width)" "the sliver's width is evidence below the gap"
+contains "sliver_face" "the sliver is found at the suggested tolerance"
+expect 0 "beautify at the suggested tolerance" -- "$K" beautify "$dir/p4-untold.json" -o "$dir/p4-fixed.json"
+contains "from the model's own suggestion" "beautify says it uses the suggestion"
+contains "faces 7 -> 6" "the sliver is repaired at the suggested tolerance"
+"$K" generate paper-10 -o "$dir/p10.json" >/dev/null 2>&1
+sed 's/"tolerance": 0.5/"tolerance_was": 0.5/' "$dir/p10.json" >"$dir/p10-untold.json"
+expect 0 "beautify with no tolerance to trust" -- "$K" beautify "$dir/p10-untold.json" -o "$dir/p10-same.json"
+contains "no repair made" "beautify says it repairs nothing without a tolerance to trust"
+cmp -s "$dir/p10-untold.json" "$dir/p10-same.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: beautify changed a model it had no tolerance for"; }
+
 # generate never writes over an input; outputs are complete files
 cp "$dir/box.json" "$dir/keep.json"
 before=$(md5sum <"$dir/keep.json")

@@ -103,10 +103,10 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
   // The tolerance the part suggests, else the default.
   const double size = model_size(b);
   ToleranceSuggestion s = suggest_tolerance(b);
-  const double length = s.usable() ? s.tolerance : 1e-3 * size;
+  const double length = s.trusted() ? s.tolerance : 1e-3 * size;
   const geo::Tolerances tol = geo::Tolerances::for_model(length, size);
   std::ostringstream ts;
-  ts << std::setprecision(3) << length << (s.usable() ? " (" + s.confidence + ")" : " (default: no clear gap)");
+  ts << std::setprecision(3) << length << (s.trusted() ? " (" + s.confidence + ")" : " (default: " + s.confidence + ")");
   row.tolerance = ts.str();
 
   auto tc = clock_type::now();
