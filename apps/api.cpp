@@ -3,6 +3,8 @@
 #include "apps/report_json.h"
 #include "apps/tolerance_choice.h"
 #include "invariants/region_validity.h"
+#include "invariants/topology_check.h"
+#include "kernel/transaction.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
 #include "repair/suggest_tolerance.h"
@@ -51,15 +53,30 @@ nlohmann::json beautify_timed(Model& m, std::optional<double> tol, const Beautif
   if (choice.trusted) {
 #ifdef KINTSUGI_HAVE_OCCT
     // The validity gate also asks OpenCASCADE about every repaired region: the model must
-    // still convert, and BRepCheck must pass where it passed on the input.
-    io::register_occt_region_check(io::occt_check(m.body).valid);
+    // still convert, and BRepCheck must pass on each repaired face that passed it on the
+    // input (or is new).
+    io::register_occt_region_check(m.body);
     // Registered for this beautify only: the next caller in this process (the Python
     // package, batch) registers its own input's verdict.
     struct Unregister {
       ~Unregister() { set_external_region_check(nullptr); }
     } unregister;
 #endif
+    // One transaction around the run, so that it can be undone whole if the final
+    // whole-body check finds what no repair's own checks did.
+    Transaction whole(m.body);
     r = kintsugi::beautify(m.body, choice.tol, o);
+    if (!o.check_topology_each_repair) {
+      if (std::vector<Violation> v = check_topology(m.body); !v.empty()) {
+        whole.rollback();
+        o.check_topology_each_repair = true;
+        if (note)
+          *note += (note->empty() ? "" : "; ") + std::string("the whole-body check after the run found ") +
+                   to_string(v.front()) + ": the run was repeated with the check after every repair";
+        r = kintsugi::beautify(m.body, choice.tol, o);
+      }
+    }
+    whole.commit();
     m.meta["tolerance"] = choice.tol.length;
     m.meta.erase("defects");  // the injector's record no longer describes the model
   } else {

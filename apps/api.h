@@ -43,9 +43,12 @@ nlohmann::json detect(const Model& model, std::optional<double> tol = std::nullo
                       std::string* tolerance_note = nullptr, bool with_suggestion = false);
 
 struct BeautifyOptions {
-  // The full topology check after every repair (on by default, as in the CLI); off
-  // makes the run linear in the model size.
-  bool check_topology_each_repair = true;
+  // The whole-body topology check after every repair (the CLI's --paranoid), for
+  // debugging: quadratic in the model. Without it each repair is checked where it acted
+  // (its operators' contracts, the validity gate on its region) and the whole body once,
+  // at the end; should that find anything (a bug), the run is undone and repeated with
+  // this on, so that the repair that breaks the body is refused and named.
+  bool check_topology_each_repair = false;
 };
 // Repairs `model` in place (meta.tolerance set to the tolerance used, meta.defects
 // dropped: the injector's record no longer describes it) and returns the report.

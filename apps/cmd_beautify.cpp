@@ -25,12 +25,14 @@ std::string pass_list() {
 }
 
 const std::string kHelp =
-    "usage: kintsugi beautify IN [--tol T] -o OUT [--report R.json] [--html PAGE.html] [--png FILE]\n\n"
+    "usage: kintsugi beautify IN [--tol T] -o OUT [--report R.json] [--html PAGE.html] [--png FILE]\n"
+    "                        [--paranoid]\n\n"
     "Repairs the topology of the model in IN (paper Figure 13, spec/beautify.md): the\n"
     "problems detect finds are repaired pass by pass in the paper's order:\n" +
     pass_list() +
-    "A repair that cannot complete is rolled back and reported with its reason. OUT is\n"
-    "written atomically, never over IN.\n\n"
+    "A repair that cannot complete is rolled back and reported with its reason. Each\n"
+    "repair is checked where it acted, the whole model once at the end. OUT is written\n"
+    "atomically, never over IN.\n\n"
     "  --tol T          the length tolerance (else meta.tolerance, else the tolerance the\n"
     "                   model suggests, as kintsugi detect --suggest-tol reports it, when\n"
     "                   its confidence is high; otherwise nothing is repaired and OUT is\n"
@@ -46,7 +48,9 @@ const std::string kHelp =
     "  --html PAGE.html the model before and after side by side, cameras linked, each\n"
     "                   problem marked and listed with what was done and the operators\n"
     "  --png FILE       a still picture of that page (needs Chromium installed: Debian's\n"
-    "                   chromium, or the browser named in KINTSUGI_CHROMIUM)\n\n"
+    "                   chromium, or the browser named in KINTSUGI_CHROMIUM)\n"
+    "  --paranoid       also check the whole model's topology after every repair (for\n"
+    "                   debugging; quadratic in the model's size)\n\n"
     "Exit: 0 written (whether or not every problem was repaired); 2 bad input or usage.\n";
 
 }  // namespace
@@ -54,7 +58,7 @@ const std::string kHelp =
 int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
   Args args;
   std::string error;
-  if (!args.parse(argv, {"--tol", "-o", "--report", "--html", "--png"}, {"--help"}, &error)) {
+  if (!args.parse(argv, {"--tol", "-o", "--report", "--html", "--png"}, {"--help", "--paranoid"}, &error)) {
     err << "kintsugi beautify: " << error << "\n" << kHelp;
     return kExitBadInput;
   }
@@ -81,7 +85,10 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
   nlohmann::json j;
   api::BeautifyDetail detail;  // filled only for the page, which draws before and after
   try {
-    j = api::beautify_file(in, out_path, args.has("--tol") ? given : std::nullopt, {}, &note, page ? &detail : nullptr);
+    api::BeautifyOptions options;
+    options.check_topology_each_repair = args.has("--paranoid");
+    j = api::beautify_file(in, out_path, args.has("--tol") ? given : std::nullopt, options, &note,
+                           page ? &detail : nullptr);
   } catch (const api::Error& e) {
     err << "kintsugi beautify: " << e.what() << "\n";
     return kExitBadInput;

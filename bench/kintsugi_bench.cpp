@@ -23,15 +23,33 @@
 //                     full topology check; then, outside the timing, Body::equals.
 //     Last line: JSON {"faces", "bytes", "model_seconds", "model_rss_bytes", "steps":
 //     {step: {"seconds", "peak_rss_bytes"}}, "read_back_equal"}.
+//
+//   kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S]
+//     Detection and beautify on the scalable family (zoo::family; default sizes 10^4 and
+//     10^5 faces, rate 0.01, seed 1), each size in a child process of its own: the model
+//     is built, detected (timed) and beautified as `kintsugi beautify` does it (the
+//     pipeline with the whole-body check once at the end, not after every repair;
+//     without OpenCASCADE's half of the validity gate, which the bench does not link).
+//     Prints per size the seconds of detection, of beautify and of each pass, the peak
+//     resident set size against the size after building the model; then the exponent
+//     of a least-squares fit of log(seconds) on log(faces). Last line: JSON {"sizes":
+//     [{"faces", "build_seconds", "model_rss_bytes", "detect_seconds",
+//     "beautify_seconds", "passes": {type: s}, "repaired", "not_repaired",
+//     "peak_rss_bytes"}], "exponent": {"detect", "beautify"}}.
 #include "bench/solvers_bench.h"
 #include "invariants/topology_check.h"
 #include "io/native_json.h"
+#include "repair/beautify.h"
+#include "repair/detect.h"
+#include "invariants/element_geometry.h"
 #include "kernel/builders.h"
 #include "zoo/zoo.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -39,6 +57,7 @@
 #include <functional>
 #include <iostream>
 #include <string>
+#include <vector>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -69,6 +88,10 @@ int usage(std::ostream& os, int code) {
         "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
         "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
         "          prints each step's time and peak memory (each step runs in a child process).\n"
+        "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S]\n"
+        "  beautify  Detects and beautifies the scalable family at each size (default\n"
+        "          10000,100000; rate 0.01), each in a child process; prints seconds per pass,\n"
+        "          peak memory and the fitted exponent of time against faces.\n"
         "       kintsugi-bench solvers\n"
         "  solvers Times geo::meet_point (2000 cases, 5 times) and geo::fit_surface_like (400\n"
         "          fits) on fixed random cases; prints the cost per call and checksums of the answers.\n";
@@ -198,11 +221,159 @@ int bench_io(int argc, char** argv) {
   return equal ? 0 : 1;
 }
 
+// Runs `work` in a child process and returns the JSON it produced (plus its peak RSS as
+// "peak_rss_bytes"), or {"error"}.
+nlohmann::ordered_json json_in_child(const std::function<nlohmann::ordered_json()>& work) {
+  int fds[2];
+  if (::pipe(fds) != 0) return {{"error", "pipe failed"}};
+  std::cout.flush();
+  pid_t pid = ::fork();
+  if (pid < 0) return {{"error", "fork failed"}};
+  if (pid == 0) {
+    ::close(fds[0]);
+    nlohmann::ordered_json r;
+    try {
+      r = work();
+    } catch (const std::exception& e) {
+      r = {{"error", e.what()}};
+    }
+    r["peak_rss_bytes"] = peak_rss_bytes();
+    std::string text = r.dump();
+    ssize_t n = ::write(fds[1], text.data(), text.size());
+    ::_exit(n == ssize_t(text.size()) ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) text.append(buf, std::size_t(n));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the child process failed"}};
+  return nlohmann::ordered_json::parse(text);
+}
+
+// The slope of the least-squares line through (log x, log y).
+double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = double(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  const double d = n * sxx - sx * sx;
+  return d > 0 ? (n * sxy - sx * sy) / d : 0.0;
+}
+
+int bench_beautify(int argc, char** argv) {
+  std::vector<long long> sizes{10'000, 100'000};
+  long long seed = 1;
+  double rate = 0.01;
+  for (int i = 2; i < argc; ++i) {
+    std::string a = argv[i];
+    auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--faces") {
+      sizes.clear();
+      std::string list = value();
+      for (std::size_t at = 0; at <= list.size();) {
+        const std::size_t comma = std::min(list.find(',', at), list.size());
+        const std::string item = list.substr(at, comma - at);
+        char* end = nullptr;
+        const long long n = std::strtoll(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || n < 10 || n > 10'000'000) {
+          std::cerr << "kintsugi-bench beautify: --faces needs whole numbers from 10 to 10000000, comma-separated; got '"
+                    << item << "'\n";
+          return 2;
+        }
+        sizes.push_back(n);
+        at = comma + 1;
+      }
+    } else if (a == "--seed") {
+      char* end = nullptr;
+      std::string v = value();
+      seed = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0') {
+        std::cerr << "kintsugi-bench beautify: --seed needs a whole number\n";
+        return 2;
+      }
+    } else if (a == "--rate") {
+      char* end = nullptr;
+      std::string v = value();
+      rate = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || !(rate >= 0 && rate <= 1)) {
+        std::cerr << "kintsugi-bench beautify: --rate needs a number from 0 to 1\n";
+        return 2;
+      }
+    } else if (a == "--help") {
+      return usage(std::cout, 0);
+    } else {
+      std::cerr << "kintsugi-bench: unknown argument '" << a << "'\n";
+      return usage(std::cerr, 2);
+    }
+  }
+  using namespace kintsugi;
+  nlohmann::ordered_json out = {{"sizes", nlohmann::ordered_json::array()}};
+  std::vector<double> faces, detect_s, beautify_s;
+  bool failed = false;
+  for (long long n : sizes) {
+    std::cerr << "kintsugi-bench beautify: " << n << " faces...\n";
+    nlohmann::ordered_json r = json_in_child([&] {
+      auto t0 = std::chrono::steady_clock::now();
+      zoo::ZooModel m = zoo::family(std::size_t(n), rate, std::uint64_t(seed));
+      nlohmann::ordered_json j;
+      j["faces"] = m.body.counts().faces;
+      j["build_seconds"] = seconds_since(t0);
+      j["model_rss_bytes"] = current_rss_bytes();
+      const geo::Tolerances tol = geo::Tolerances::for_model(m.tolerance, model_size(m.body));
+      t0 = std::chrono::steady_clock::now();
+      const Detection d = detect(m.body, tol);
+      j["detect_seconds"] = seconds_since(t0);
+      j["problems"] = d.problems.size();
+      BeautifyOptions o;
+      o.check_topology_each_repair = false;
+      t0 = std::chrono::steady_clock::now();
+      const BeautifyReport rep = beautify(m.body, tol, o);
+      const bool valid = check_topology(m.body).empty();  // once at the end, as the CLI does
+      j["beautify_seconds"] = seconds_since(t0);
+      nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+      for (ProblemType t : kAllProblemTypes) passes[problem_name(t)] = rep.seconds[problem_order(t) - 1];
+      j["passes"] = passes;
+      j["repaired"] = rep.repaired();
+      j["not_repaired"] = rep.not_repaired();
+      if (!valid) j["error"] = "the beautified body fails the topology check";
+      return j;
+    });
+    if (r.contains("error")) {
+      std::cout << n << " faces: " << r["error"].get<std::string>() << "\n";
+      failed = true;
+      continue;
+    }
+    std::cout << r["faces"] << " faces: detect " << r["detect_seconds"] << " s (" << r["problems"]
+              << " problems), beautify " << r["beautify_seconds"] << " s (" << r["repaired"] << " repaired, "
+              << r["not_repaired"] << " not), peak RSS " << r["peak_rss_bytes"].get<double>() / 1e6 << " MB (model "
+              << r["model_rss_bytes"].get<double>() / 1e6 << " MB)\n  passes:";
+    for (const auto& [name, s] : r["passes"].items()) std::cout << " " << name << " " << s.get<double>();
+    std::cout << "\n";
+    faces.push_back(r["faces"].get<double>());
+    detect_s.push_back(r["detect_seconds"].get<double>());
+    beautify_s.push_back(r["beautify_seconds"].get<double>());
+    out["sizes"].push_back(r);
+  }
+  if (faces.size() >= 2) {
+    out["exponent"] = {{"detect", loglog_slope(faces, detect_s)}, {"beautify", loglog_slope(faces, beautify_s)}};
+    std::cout << "exponent (least squares of log s on log faces): detect " << out["exponent"]["detect"] << ", beautify "
+              << out["exponent"]["beautify"] << "\n";
+  }
+  std::cout << out.dump() << "\n";
+  return failed ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) return usage(std::cout, 0);
   if (argc >= 2 && std::strcmp(argv[1], "io") == 0) return bench_io(argc, argv);
+  if (argc >= 2 && std::strcmp(argv[1], "beautify") == 0) return bench_beautify(argc, argv);
   if (argc == 2 && std::strcmp(argv[1], "solvers") == 0) return kintsugi::bench::bench_solvers();
   if (argc < 2 || std::strcmp(argv[1], "memory") != 0) return usage(std::cerr, 2);
   long long faces = -1;

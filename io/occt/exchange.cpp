@@ -40,8 +40,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace kintsugi::io {
 
@@ -495,7 +498,38 @@ OcctVerdict occt_check(const Body& b) {
 
 namespace {
 
-bool g_brepcheck = true;
+// The model before beautify and BRepCheck's verdict on each of its faces, taken when
+// first asked for.
+struct RegionCheckInput {
+  std::shared_ptr<const Body> body;
+  std::unordered_map<std::uint32_t, bool> face_valid;
+};
+RegionCheckInput g_input;
+
+bool face_passes_brepcheck(const Body& b, FaceH f) {
+  const std::set<FaceH> one{f};
+  std::string why;
+  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one);
+  return s && BRepCheck_Analyzer(s->face[f.idx()]).IsValid() == Standard_True;
+}
+
+// Whether face f of the model before beautify failed BRepCheck: then the same face after a
+// repair may fail too.
+bool failed_before(FaceH f) {
+  const Body* in = g_input.body.get();
+  if (!in || !in->alive(f)) return false;  // a new face: it must pass
+  auto it = g_input.face_valid.find(f.idx());
+  if (it == g_input.face_valid.end()) {
+    bool valid = true;
+    try {
+      valid = face_passes_brepcheck(*in, f);
+    } catch (const Standard_Failure&) {
+      valid = false;
+    }
+    it = g_input.face_valid.emplace(f.idx(), valid).first;
+  }
+  return !it->second;
+}
 
 std::string occt_region_check(const Body& b, const Region& r) {
   silence_occt();
@@ -503,10 +537,9 @@ std::string occt_region_check(const Body& b, const Region& r) {
     std::string why;
     std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces);
     if (!s) return "the model could not be written: " + why;
-    if (!g_brepcheck) return "";
     for (FaceH f : r.faces) {
       BRepCheck_Analyzer ana(s->face[f.idx()]);
-      if (ana.IsValid()) continue;
+      if (ana.IsValid() || failed_before(f)) continue;
       TopTools_IndexedMapOfShape all;
       TopExp::MapShapes(s->face[f.idx()], all);
       all.Add(s->face[f.idx()]);
@@ -526,8 +559,9 @@ std::string occt_region_check(const Body& b, const Region& r) {
 
 }  // namespace
 
-void register_occt_region_check(bool brepcheck) {
-  g_brepcheck = brepcheck;
+void register_occt_region_check(const Body& input) {
+  g_input.body = std::make_shared<const Body>(input);
+  g_input.face_valid.clear();
   set_external_region_check(&occt_region_check);
 }
 

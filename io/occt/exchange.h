@@ -47,10 +47,13 @@ struct OcctVerdict {
 OcctVerdict occt_check(const Body& b);
 
 // The validity gate's OpenCASCADE half (invariants/region_validity.h): registers a check
-// that the region's faces convert (the model can still be written) and, when
-// `brepcheck`, that BRepCheck_Analyzer finds nothing wrong with them. The CLI passes
-// brepcheck = false when the model read is itself not valid by BRepCheck (so that a
-// repair is not blamed for what was there before).
-void register_occt_region_check(bool brepcheck);
+// that the region's faces convert (the model can still be written) and that
+// BRepCheck_Analyzer finds nothing wrong with each of them — unless the face was already
+// in `input` (the model before beautify; copied) and BRepCheck found it wrong there too,
+// so that a repair is not blamed for what was there before. The input's verdicts are
+// taken face by face, only for faces a repair touched and only when the repaired face
+// fails: a whole-model BRepCheck (quadratic in the edges of a shell: 30 s at 10,000
+// faces) is never needed, and a bad face far away does not turn the check off elsewhere.
+void register_occt_region_check(const Body& input);
 
 }  // namespace kintsugi::io

@@ -43,7 +43,7 @@ void bind_repair(py::module_& m) {
         }
         return to_python(j);
       },
-      py::arg("model"), py::arg("tol") = py::none(), py::arg("check_topology_each_repair") = true,
+      py::arg("model"), py::arg("tol") = py::none(), py::arg("check_topology_each_repair") = false,
       "Repair `model` in place; returns the report (the CLI's --report; seconds.read/write are 0).");
   m.def(
       "beautify_file",

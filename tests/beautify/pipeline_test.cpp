@@ -147,5 +147,54 @@ RC_GTEST_PROP(Pipeline, LeftIsWhatDetectFindsOnRandomZooModels, ()) {
   if (!bad.empty()) RC_FAIL(what + bad);
 }
 
+// The whole-body topology check after every repair (BeautifyOptions::
+// check_topology_each_repair; the CLI's --paranoid) only checks: with it and without it
+// beautify makes the same repairs and the same body, on the paper objects and on random
+// zoo models. (Without it the CLI checks the whole body once, at the end.)
+std::string paranoid_difference(const Body& input, const geo::Tolerances& tol) {
+  Body fast = input.clone(), paranoid = input.clone();
+  BeautifyOptions off, on;
+  off.check_topology_each_repair = false;
+  on.check_topology_each_repair = true;
+  const BeautifyReport rf = beautify(fast, tol, off), rp = beautify(paranoid, tol, on);
+  std::string why;
+  if (!fast.equals(paranoid, &why)) return "the bodies differ: " + why;
+  if (rf.problems.size() != rp.problems.size()) return "the reports list different numbers of problems";
+  for (std::size_t i = 0; i < rf.problems.size(); ++i)
+    if (rf.problems[i].outcome != rp.problems[i].outcome || rf.problems[i].operators != rp.problems[i].operators)
+      return "problem " + std::to_string(i) + " was handled differently";
+  if (!check_topology(fast).empty()) return "the body fails the whole-body check at the end";
+  return "";
+}
+
+TEST(Pipeline, TheCheckAfterEveryRepairChangesNothingOnPaperObjects) {
+  for (int n = 1; n <= 10; ++n) {
+    zoo::ZooModel m = zoo::paper_object(n, false);
+    EXPECT_EQ(paranoid_difference(m.body, tol_for(m.body, m.tolerance)), "") << "paper object " << n;
+  }
+}
+
+RC_GTEST_PROP(Pipeline, TheCheckAfterEveryRepairChangesNothingOnRandomZooModels, ()) {
+  const double t = *rc::gen::element(0.01, 0.02, 0.05);
+  Body b;
+  switch (*rc::gen::inRange(0, 5)) {
+    case 0: b = build::box(1, 1, 1); break;
+    case 1: b = build::pyramid(build::regular_polygon(4, 1), 1); break;
+    case 2: b = build::cylinder(1, 2); break;
+    case 3: b = build::grid_box(24); break;
+    default: b = build::prism(build::regular_polygon(5, 1), 2); break;
+  }
+  const int n = *rc::gen::inRange(1, 5);
+  std::string what;
+  for (int i = 0; i < n; ++i) {
+    ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
+    std::string err;
+    if (auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &err))
+      what += std::string(problem_name(type)) + ": " + inj->description + "\n";
+  }
+  const std::string bad = paranoid_difference(b, tol_for(b, t));
+  if (!bad.empty()) RC_FAIL(what + bad);
+}
+
 }  // namespace
 }  // namespace kintsugi

@@ -119,7 +119,7 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
   EXPECT_LT(since(td), kMaxSeconds);
   row.problems = int(d.problems.size());
 
-  io::register_occt_region_check(occt_before);
+  io::register_occt_region_check(b);
   auto tb = clock_type::now();
   BeautifyOptions opt;
   opt.check_topology_each_repair = false;

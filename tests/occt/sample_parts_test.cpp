@@ -33,7 +33,7 @@ void beautify_is_valid_or_unchanged(const std::string& path, io::CadFormat forma
   // which our bodies do not carry), so OpenCASCADE calls it invalid as we read it: then
   // beautify must leave it as read, or make it valid.
   const bool occt_before = io::occt_check(b).valid;
-  io::register_occt_region_check(occt_before);
+  io::register_occt_region_check(b);
   BeautifyReport r = beautify(b, tol);
   set_external_region_check(nullptr);
 
