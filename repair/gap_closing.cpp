@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -262,7 +263,7 @@ std::string fill_gap(RepairCall& c, const Gap& g, std::string* surface_kind) {
   return "";
 }
 
-GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerances& tol) {
+GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerances& tol, bool exhaustive) {
   GapClosure out;
   const std::size_t k = g.runs.size();
   std::vector<geo::Vec3> j(k);
@@ -299,15 +300,38 @@ GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerance
   // Two vertices: runs a and c (not next to each other) share the new edge; the runs
   // between them on either side collapse into its two ends.
   double best = HUGE_VAL;
-  for (std::size_t a = 0; a < k; ++a)
-    for (std::size_t c = a + 2; c < k; ++c) {
-      if (a + k - c < 2) continue;
-      std::vector<std::size_t> ga{a, c}, gb{a, c};
+  // For a fixed a, group A (runs a..c) grows with c and group B (runs c..a+k-1, mod k)
+  // shrinks. A group whose surfaces have no common point within the tolerance (no_point,
+  // degenerate) has none with more surfaces either, so A is solved for increasing c and B
+  // for decreasing c, each up to its first such failure: on a wide gap whose faces meet
+  // nowhere (a free-form shell's open border, 35 runs) that is O(k) solves, not O(k²).
+  auto no_common_point = [](const geo::MeetPoint& m) {
+    return m.status == geo::MeetStatus::no_point || m.status == geo::MeetStatus::degenerate;
+  };
+  std::vector<std::optional<geo::MeetPoint>> pa_at(k), pb_at(k);
+  for (std::size_t a = 0; a < k; ++a) {
+    const std::size_t last = std::min(k - 1, a + k - 2);  // c in [a + 2, last]
+    if (a + 2 > last) continue;
+    std::fill(pa_at.begin(), pa_at.end(), std::nullopt);
+    std::fill(pb_at.begin(), pb_at.end(), std::nullopt);
+    // Group A lies between junction a (end of run a) and junction c-1; B between c and a-1.
+    for (std::size_t c = a + 2; c <= last; ++c) {
+      std::vector<std::size_t> ga{a, c};
       for (std::size_t i = a + 1; i < c; ++i) ga.push_back(i);
+      pa_at[c] = geo::meet_point(surfaces_of(ga), mean(a, c - a), tol.length, tol.precision);
+      if (!exhaustive && no_common_point(*pa_at[c])) break;
+    }
+    for (std::size_t c = last; c >= a + 2; --c) {
+      if (!pa_at[c] || !meets(*pa_at[c])) continue;  // no use solving B where A fails
+      std::vector<std::size_t> gb{a, c};
       for (std::size_t i = c + 1; i < a + k; ++i) gb.push_back(i % k);
-      // Group A lies between junction a (end of run a) and junction c-1; B between c and a-1.
-      geo::MeetPoint pa = geo::meet_point(surfaces_of(ga), mean(a, c - a), tol.length, tol.precision);
-      geo::MeetPoint pb = geo::meet_point(surfaces_of(gb), mean(c, a + k - c), tol.length, tol.precision);
+      pb_at[c] = geo::meet_point(surfaces_of(gb), mean(c, a + k - c), tol.length, tol.precision);
+      if (!exhaustive && no_common_point(*pb_at[c])) break;
+    }
+    for (std::size_t c = a + 2; c <= last; ++c) {
+      if (!pa_at[c] || !pb_at[c]) continue;
+      const geo::MeetPoint& pa = *pa_at[c];
+      const geo::MeetPoint& pb = *pb_at[c];
       if (!meets(pa) || !meets(pb) || (pa.point - pb.point).norm() <= tol.precision) continue;
       bool ok = true;
       for (std::size_t i = a; ok && i < c; ++i) ok = extends(b, jv[i], pa.point);
@@ -339,6 +363,7 @@ GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerance
         out.residual = std::max(pa.residual, pb.residual);
       }
     }
+  }
   if (out.kind == GapClosure::two_vertices) return out;
   if (k >= 4) out.note += "; no two opposite faces carry an edge whose ends the others meet";
   out.kind = GapClosure::new_face;

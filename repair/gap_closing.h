@@ -62,6 +62,8 @@ struct GapClosure {
   double residual = 0.0;          // how far the meeting points are from the surfaces
   std::string note;               // why the simpler closures were not taken
 };
-GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerances& tol);
+// `exhaustive` (for tests): solve every pair of opposite runs, without the search's
+// pruning of groups that grow from one with no common point.
+GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerances& tol, bool exhaustive = false);
 
 }  // namespace kintsugi::detail

@@ -11,8 +11,11 @@
 #include "kernel/euler.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/gap_closing.h"
 #include "tests/support/two_sided_distance.h"
+#include "zoo/defects.h"
 #include "zoo/defects_gaps.h"
+#include "zoo/random.h"
 #include "zoo/local_ops.h"
 #include "zoo/zoo.h"
 
@@ -314,6 +317,94 @@ TEST(Gaps, ZooScanGapsCloseAndMatchTheCleanModel) {
   for (const auto& [k, v] : table) std::printf("  %-40s %d / %d\n", k.c_str(), v.second, v.first);
   EXPECT_GT(cases, int(10 * kSeeds));
   EXPECT_TRUE(failures.empty()) << failures;
+}
+
+// The multiple-face gap's plan prunes its search (a group of runs whose surfaces have no
+// common point has none with more runs): it must choose what solving every pair chooses,
+// on the zoo's multiple-face gaps over every base and on the paper objects that have one.
+TEST(Gaps, PrunedPlanIsTheExhaustiveOne) {
+  const double t = 0.05;
+  int gaps = 0, two_vertex_plans = 0;
+  auto compare = [&](const Body& b, const geo::Tolerances& tol, const std::string& name) {
+    for (const Problem& p : detect(b, tol).problems) {
+      if (p.type != ProblemType::multi_face_gap) continue;
+      std::string why;
+      std::optional<detail::Gap> g = detail::find_gap(b, p, &why);
+      if (!g) continue;
+      ++gaps;
+      const detail::GapClosure fast = detail::plan_multi_face_gap(b, *g, tol);
+      const detail::GapClosure all = detail::plan_multi_face_gap(b, *g, tol, /*exhaustive=*/true);
+      two_vertex_plans += all.kind == detail::GapClosure::two_vertices;
+      EXPECT_EQ(fast.kind, all.kind) << name;
+      EXPECT_EQ(fast.keep, all.keep) << name;
+      ASSERT_EQ(fast.points.size(), all.points.size()) << name;
+      for (std::size_t i = 0; i < fast.points.size(); ++i) EXPECT_EQ(fast.points[i], all.points[i]) << name;
+    }
+  };
+  for (const Base& base : bases())
+    for (std::uint64_t seed = 1; seed <= 3 * kSeeds; ++seed) {
+      Body b = base.make();
+      std::string err;
+      if (!zoo::inject(b, ProblemType::multi_face_gap, seed, std::nullopt, t, &err)) continue;
+      compare(b, tol_for(b, t), base.name + " seed " + std::to_string(seed));
+    }
+  for (int n : {8, 10}) {
+    zoo::ZooModel m = zoo::paper_object(n, false);
+    compare(m.body, tol_for(m.body, m.tolerance), "paper object " + std::to_string(n));
+  }
+  // Wide gaps that close into an edge: an n-sided pyramid (n even, so opposite base
+  // edges are parallel) whose apex is cut off by a small face, its sloping planes refitted
+  // as a scan would fit them to a ridge instead of an apex: the faces on one side of a
+  // direction u (parallel to base edges 0 and n/2) through P = apex + d·u, the others
+  // through Q = apex - d·u, faces 0 and n/2 through both. The small face removed (kfmb),
+  // the gap faces all n sloping faces and closes by the edge PQ between runs 0 and n/2,
+  // far apart in the gap's order — where the pruning has groups to skip.
+  for (int sides : {6, 8, 10}) {
+    Body b = build::pyramid(build::regular_polygon(sides, 1), 1);
+    VertexH apex;
+    for (VertexH v : b.vertices())
+      if (!apex.valid() || b.point(v).z() > b.point(apex).z()) apex = v;
+    const geo::Vec3 top = b.point(apex);
+    std::vector<FaceH> sloping;
+    for (HalfedgeH h : b.outgoing(apex)) sloping.push_back(b.face(h));
+    zoo::Rng rng(7);
+    zoo::make::small_face(b, apex, 0.2 * t * t, &rng);
+    // The base edge of each sloping face: its two vertices at z = 0.
+    auto base_edge = [&](FaceH f) {
+      std::vector<geo::Vec3> low;
+      for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f)))
+        if (std::abs(b.point(b.origin(h)).z()) < 1e-9) low.push_back(b.point(b.origin(h)));
+      return low;
+    };
+    const std::vector<geo::Vec3> e0 = base_edge(sloping.front());
+    ASSERT_EQ(e0.size(), 2u);
+    const geo::Vec3 u = (e0[1] - e0[0]).normalized(), P = top + 5 * t * u, Q = top - 5 * t * u;
+    for (FaceH f : sloping) {
+      const std::vector<geo::Vec3> e = base_edge(f);
+      ASSERT_EQ(e.size(), 2u);
+      const geo::Vec3 mid = 0.5 * (e[0] + e[1]);
+      const geo::Vec3 along = (e[1] - e[0]).normalized();
+      const double side = (mid - top).dot(u);
+      const geo::Vec3 through = std::abs(along.cross(u).norm()) < 1e-9 ? P : side > 0 ? P : Q;
+      geo::Vec3 n = (e[1] - e[0]).cross(through - e[0]).normalized();
+      if (n.dot(geo::Vec3(mid.x(), mid.y(), 0.0)) < 0) n = -n;  // outward
+      geo::Plane plane;
+      plane.frame.origin = e[0];
+      plane.frame.z = n;
+      plane.frame.x = along;
+      b.set_surface(f, plane);
+    }
+    FaceH cap;
+    for (FaceH f : b.faces())
+      if (std::find(sloping.begin(), sloping.end(), f) == sloping.end() && b.point(b.origin(b.loop_halfedges(b.outer_loop(f)).front())).z() > 0.5)
+        cap = f;
+    ASSERT_TRUE(cap.valid());
+    ASSERT_TRUE(euler::kfmb(b, cap).ok());
+    const int before = two_vertex_plans;
+    compare(b, tol_for(b, t), std::to_string(sides) + "-sided ridge");
+    EXPECT_GT(two_vertex_plans, before) << sides << "-sided ridge: the gap should close into an edge";
+  }
+  EXPECT_GT(gaps, 10);
 }
 
 }  // namespace
