@@ -36,7 +36,8 @@ before=$(ls corpus | wc -l)
 start=$(date -u +%FT%TZ)
 /usr/bin/time -f "%e %U %S" -o time.txt "$bin" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=60 \
   -artifact_prefix="$work/artifacts/" "${parallel[@]}" "$@" corpus >run.log 2>&1
-read -r wall user sys <time.txt
+# (time writes "Command exited with non-zero status N" first when the fuzzer found something)
+read -r wall user sys < <(tail -n 1 time.txt)
 {
   echo "$target: $start, ${seconds} s per job, wall ${wall} s, CPU ${user} s user + ${sys} s system"
   echo "corpus: $before inputs at the start, $(ls corpus | wc -l) at the end ($work/corpus)"
