@@ -17,6 +17,9 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
+#include <ElSLib.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <gp_Dir2d.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom2d_Line.hxx>
 #include <TopTools_MapOfShape.hxx>
@@ -311,6 +314,55 @@ class Builder {
     }
   }
 
+  // A seam of a sphere, cylinder or cone is an isoparametric line (u constant, v moving
+  // with the curve's parameter at unit speed): its two pcurves are made exact lines.
+  // ShapeFix projects them as B-splines, whose rounding wobble at our 1e-7 tolerances made
+  // BRepCheck find the wire crossing itself where the seam meets another edge at a vertex
+  // (two fused spheres, fuzz_from_occt 2026-12-03; OpenCASCADE's own shape has lines).
+  // A seam that is not such a line (within 1e-9 in the parameters) keeps its projection.
+  void exact_seam_pcurves(const TopoDS_Wire& w, const TopoDS_Face& face) {
+    GeomAdaptor_Surface ad(BRep_Tool::Surface(face));
+    const GeomAbs_SurfaceType type = ad.GetType();
+    if (type != GeomAbs_Sphere && type != GeomAbs_Cylinder && type != GeomAbs_Cone) return;
+    auto uv = [&](const gp_Pnt& p, double* u, double* v) {
+      if (type == GeomAbs_Sphere) ElSLib::Parameters(ad.Sphere(), p, *u, *v);
+      else if (type == GeomAbs_Cylinder) ElSLib::Parameters(ad.Cylinder(), p, *u, *v);
+      else ElSLib::Parameters(ad.Cone(), p, *u, *v);
+    };
+    const double period = 2 * M_PI, eps = 1e-9;
+    for (TopoDS_Iterator it(w); it.More(); it.Next()) {
+      const TopoDS_Edge e = TopoDS::Edge(it.Value());
+      if (it.Value().Orientation() != TopAbs_FORWARD || !BRep_Tool::IsClosed(e, face) || BRep_Tool::Degenerated(e)) continue;
+      double t0, t1;
+      Handle(Geom_Curve) c = BRep_Tool::Curve(e, t0, t1);
+      if (c.IsNull() || !(t1 > t0)) continue;
+      // Inside the range: at a sphere's pole u is undefined.
+      const double ta = t0 + 0.25 * (t1 - t0), tm = 0.5 * (t0 + t1), tb = t0 + 0.75 * (t1 - t0);
+      double ua, va, um, vm, ub, vb;
+      uv(c->Value(ta), &ua, &va);
+      uv(c->Value(tm), &um, &vm);
+      uv(c->Value(tb), &ub, &vb);
+      auto same_u = [&](double x, double y) { return std::abs(std::remainder(x - y, period)) <= eps; };
+      const double slope = (vb - va) / (tb - ta);
+      if (!same_u(ua, um) || !same_u(ub, um) || std::abs(std::abs(slope) - 1) > eps ||
+          std::abs(vm - (va + slope * (tm - ta))) > eps)
+        continue;
+      const double v0 = va - slope * (ta - t0);  // v at t0
+      const TopoDS_Edge fwd = TopoDS::Edge(e.Oriented(TopAbs_FORWARD)), rev = TopoDS::Edge(e.Oriented(TopAbs_REVERSED));
+      double a, b;
+      Handle(Geom2d_Curve) cf = BRep_Tool::CurveOnSurface(fwd, face, a, b);
+      Handle(Geom2d_Curve) cr = BRep_Tool::CurveOnSurface(rev, face, a, b);
+      if (cf.IsNull() || cr.IsNull()) continue;
+      // Each pcurve keeps the period orient_seams gave it.
+      auto line_at = [&](const Handle(Geom2d_Curve)& old) -> Handle(Geom2d_Curve) {
+        const double u = um + period * std::round((old->Value(tm).X() - um) / period);
+        return new Geom2d_Line(gp_Pnt2d(u, v0 - slope * t0), gp_Dir2d(0, slope > 0 ? 1 : -1));
+      };
+      bb_.UpdateEdge(fwd, line_at(cf), line_at(cr), face, BRep_Tool::Tolerance(fwd));
+      bb_.Range(fwd, face, t0, t1);
+    }
+  }
+
   // Puts the wire's pcurves in the periods where they join up in the parameter plane.
   // ShapeFix projects each edge on its own, so a pcurve can land a period away from its
   // neighbours, and ShapeFix_Wire::FixShifted moved the two pcurves of a seam split by a
@@ -497,6 +549,7 @@ class Builder {
       fix.FixShiftedMode() = 0;
       fix.FixEdgeCurves();
       orient_seams(w, tf);
+      exact_seam_pcurves(w, tf);
       fix.FixDegenerated();
       w = fix.Wire();
       chain_pcurves(w, tf);

@@ -6,9 +6,11 @@
 #include "io/occt/exchange.h"
 
 #include <BRepAlgoAPI_Common.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRep_Tool.hxx>
@@ -141,6 +143,47 @@ TEST(FromShape, ASphereWithAnOctantAwayWritesBack) {
   TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, -20), 1, 1, 1).Shape();
   BRepAlgoAPI_Fuse fuse(sphere, box);
   ASSERT_TRUE(fuse.IsDone() && !fuse.HasErrors());
+  std::string error;
+  std::optional<Body> b = read(fuse.Shape(), &error);
+  ASSERT_TRUE(b) << error;
+  expect_occt_valid(*b);
+}
+
+// fuzz_from_occt's hour, 2026-12-03 (fuzz/corpus/from_occt/regress-fuse-two-spheres):
+// a sphere (r 20) turned 330° about x and moved, fused with a sphere (r 10) at
+// (-20, -20, -20): two sphere faces meeting in a circle. BRepCheck accepted the shape
+// and refused our round trip (the big sphere's face unorientable, the wire of its hole
+// self-intersecting in the parameter plane).
+TEST(FromShape, TwoFusedSpheresWriteBack) {
+  TopoDS_Shape big = placed(BRepPrimAPI_MakeSphere(20).Shape(), gp::DX(), 22, gp_Vec(-12.5, -5.5, -15.5));
+  TopoDS_Shape small = placed(BRepPrimAPI_MakeSphere(10).Shape(), gp::DX(), 0, gp_Vec(-20, -20, -20));
+  BRepAlgoAPI_Fuse fuse(big, small);
+  ASSERT_TRUE(fuse.IsDone() && !fuse.HasErrors());
+  ASSERT_TRUE(BRepCheck_Analyzer(fuse.Shape()).IsValid());
+  std::string error;
+  std::optional<Body> b = read(fuse.Shape(), &error);
+  ASSERT_TRUE(b) << error;
+  EXPECT_EQ(b->counts().faces, 2u);
+  expect_occt_valid(*b);
+}
+
+// The same hour: a torus (R 4, r 3) turned 90° about (1, 2, 3), a cone (radii 0 and 1,
+// height 1) and a unit box, all at (-20, -20, -20), fused
+// (fuzz/corpus/from_occt/regress-fuse-torus-cone-box). Not fixed yet (DISABLED): the
+// round trip's edge e11 on the torus face f2 is read as a straight line (a short section
+// edge, straight within the reader's tolerance), which lies off the torus by more than
+// the 1e-7 it is written with: BRepCheck_InvalidCurveOnSurface. The line recognition
+// must keep such an edge's curve (or its exact section) where a line would leave a
+// curved face.
+TEST(FromShape, DISABLED_ATorusConeAndBoxFusedWriteBack) {
+  TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(4, 3).Shape(), gp_Dir(1, 2, 3), 6, gp_Vec(-20, -20, -20));
+  TopoDS_Shape cone = placed(BRepPrimAPI_MakeCone(0, 1, 1).Shape(), gp::DZ(), 0, gp_Vec(-20, -20, -20));
+  TopoDS_Shape box = placed(BRepPrimAPI_MakeBox(1, 1, 1).Shape(), gp::DZ(), 0, gp_Vec(-20, -20, -20));
+  BRepAlgoAPI_Fuse first(torus, cone);
+  ASSERT_TRUE(first.IsDone() && !first.HasErrors());
+  BRepAlgoAPI_Fuse fuse(first.Shape(), box);
+  ASSERT_TRUE(fuse.IsDone() && !fuse.HasErrors());
+  ASSERT_TRUE(BRepCheck_Analyzer(fuse.Shape()).IsValid());
   std::string error;
   std::optional<Body> b = read(fuse.Shape(), &error);
   ASSERT_TRUE(b) << error;
