@@ -102,9 +102,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Runs `step` in a child process; returns {"seconds", "peak_rss_bytes"} or {"error"}.
-// The child reports through a pipe: its peak RSS (its own getrusage) and its seconds.
-nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
+// Runs `work` in a child process and returns the JSON it produced (plus its peak RSS as
+// "peak_rss_bytes"), or {"error"}.
+nlohmann::ordered_json json_in_child(const std::function<nlohmann::ordered_json()>& work) {
   int fds[2];
   if (::pipe(fds) != 0) return {{"error", "pipe failed"}};
   std::cout.flush();
@@ -112,11 +112,13 @@ nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
   if (pid < 0) return {{"error", "fork failed"}};
   if (pid == 0) {
     ::close(fds[0]);
-    auto t0 = std::chrono::steady_clock::now();
-    std::string error = step();
-    double seconds = seconds_since(t0);
-    nlohmann::ordered_json r = {{"seconds", seconds}, {"peak_rss_bytes", peak_rss_bytes()}};
-    if (!error.empty()) r = {{"error", error}};
+    nlohmann::ordered_json r;
+    try {
+      r = work();
+    } catch (const std::exception& e) {
+      r = {{"error", e.what()}};
+    }
+    r["peak_rss_bytes"] = peak_rss_bytes();
     std::string text = r.dump();
     ssize_t n = ::write(fds[1], text.data(), text.size());
     ::_exit(n == ssize_t(text.size()) ? 0 : 1);
@@ -128,8 +130,18 @@ nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
   ::close(fds[0]);
   int status = 0;
   ::waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the step's process failed"}};
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the child process failed"}};
   return nlohmann::ordered_json::parse(text);
+}
+
+// Runs `step` in a child process; returns {"seconds", "peak_rss_bytes"} or {"error"}.
+nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
+  return json_in_child([&]() -> nlohmann::ordered_json {
+    auto t0 = std::chrono::steady_clock::now();
+    std::string error = step();
+    if (!error.empty()) return {{"error", error}};
+    return {{"seconds", seconds_since(t0)}};
+  });
 }
 
 int bench_io(int argc, char** argv) {
@@ -219,38 +231,6 @@ int bench_io(int argc, char** argv) {
   for (const auto& [name, r] : steps.items())
     if (r.contains("error")) return 1;
   return equal ? 0 : 1;
-}
-
-// Runs `work` in a child process and returns the JSON it produced (plus its peak RSS as
-// "peak_rss_bytes"), or {"error"}.
-nlohmann::ordered_json json_in_child(const std::function<nlohmann::ordered_json()>& work) {
-  int fds[2];
-  if (::pipe(fds) != 0) return {{"error", "pipe failed"}};
-  std::cout.flush();
-  pid_t pid = ::fork();
-  if (pid < 0) return {{"error", "fork failed"}};
-  if (pid == 0) {
-    ::close(fds[0]);
-    nlohmann::ordered_json r;
-    try {
-      r = work();
-    } catch (const std::exception& e) {
-      r = {{"error", e.what()}};
-    }
-    r["peak_rss_bytes"] = peak_rss_bytes();
-    std::string text = r.dump();
-    ssize_t n = ::write(fds[1], text.data(), text.size());
-    ::_exit(n == ssize_t(text.size()) ? 0 : 1);
-  }
-  ::close(fds[1]);
-  std::string text;
-  char buf[4096];
-  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) text.append(buf, std::size_t(n));
-  ::close(fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the child process failed"}};
-  return nlohmann::ordered_json::parse(text);
 }
 
 // The slope of the least-squares line through (log x, log y).

@@ -122,8 +122,9 @@ TEST(Pipeline, AProblemRemovedByAnEarlierRepairIsReportedResolved) {
   EXPECT_EQ(b.counts().faces, 3u);
 }
 
-RC_GTEST_PROP(Pipeline, LeftIsWhatDetectFindsOnRandomZooModels, ()) {
-  const double t = *rc::gen::element(0.01, 0.02, 0.05);
+// A random zoo model for the properties below: a base solid with one to four defects of
+// any type at tolerance t; *what says which defects were made.
+Body random_zoo_model(double t, std::string* what) {
   Body b;
   switch (*rc::gen::inRange(0, 6)) {
     case 0: b = build::box(1, 1, 1); break;
@@ -134,13 +135,19 @@ RC_GTEST_PROP(Pipeline, LeftIsWhatDetectFindsOnRandomZooModels, ()) {
     default: b = build::prism(build::regular_polygon(5, 1), 2); break;
   }
   const int n = *rc::gen::inRange(1, 5);
-  std::string what;
   for (int i = 0; i < n; ++i) {
     ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
     std::string err;
     if (auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &err))
-      what += std::string(problem_name(type)) + ": " + inj->description + "\n";
+      *what += std::string(problem_name(type)) + ": " + inj->description + "\n";
   }
+  return b;
+}
+
+RC_GTEST_PROP(Pipeline, LeftIsWhatDetectFindsOnRandomZooModels, ()) {
+  const double t = *rc::gen::element(0.01, 0.02, 0.05);
+  std::string what;
+  Body b = random_zoo_model(t, &what);
   geo::Tolerances tol = tol_for(b, t);
   BeautifyReport r = beautify(b, tol);
   const std::string bad = left_mismatch(b, tol, r);
@@ -176,22 +183,8 @@ TEST(Pipeline, TheCheckAfterEveryRepairChangesNothingOnPaperObjects) {
 
 RC_GTEST_PROP(Pipeline, TheCheckAfterEveryRepairChangesNothingOnRandomZooModels, ()) {
   const double t = *rc::gen::element(0.01, 0.02, 0.05);
-  Body b;
-  switch (*rc::gen::inRange(0, 5)) {
-    case 0: b = build::box(1, 1, 1); break;
-    case 1: b = build::pyramid(build::regular_polygon(4, 1), 1); break;
-    case 2: b = build::cylinder(1, 2); break;
-    case 3: b = build::grid_box(24); break;
-    default: b = build::prism(build::regular_polygon(5, 1), 2); break;
-  }
-  const int n = *rc::gen::inRange(1, 5);
   std::string what;
-  for (int i = 0; i < n; ++i) {
-    ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
-    std::string err;
-    if (auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &err))
-      what += std::string(problem_name(type)) + ": " + inj->description + "\n";
-  }
+  const Body b = random_zoo_model(t, &what);
   const std::string bad = paranoid_difference(b, tol_for(b, t));
   if (!bad.empty()) RC_FAIL(what + bad);
 }
