@@ -18,6 +18,7 @@
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_BezierCurve.hxx>
@@ -339,7 +340,14 @@ std::optional<geo::Curve> iso_curve(const TopoDS_Edge& forward, const std::vecto
 // least 1e-7) of the line through its ends is that line: the curve lies in the convex
 // hull of its poles (weights are positive). The straight seams ShapeFix adds on free-form
 // faces (a cone written as a B-spline surface) are such curves.
-std::optional<geo::Curve> straight_curve(const TopoDS_Edge& forward, const Handle(Geom_Curve)& c, double f, double l) {
+//
+// The line is written at 1e-7 (our bodies carry no tolerances), so on a curved face it
+// must also lie on that face to 1e-7: a short section edge on a torus, straight within its
+// boolean's tolerance (1e-5), read as a line left the torus by more than that and
+// BRepCheck refused the written shape (fuzz_from_occt, 2026-12-03). Such an edge keeps its
+// curve.
+std::optional<geo::Curve> straight_curve(const TopoDS_Edge& forward, const Handle(Geom_Curve)& c, double f, double l,
+                                         const std::vector<TopoDS_Face>& faces) {
   Handle(Geom_Curve) basis = c;
   while (auto t = Handle(Geom_TrimmedCurve)::DownCast(basis)) basis = t->BasisCurve();
   std::vector<gp_Pnt> poles;
@@ -366,6 +374,14 @@ std::optional<geo::Curve> straight_curve(const TopoDS_Edge& forward, const Handl
   gp_Lin lin(p0, gp_Dir(gp_Vec(p0, p1)));
   for (const gp_Pnt& p : poles)
     if (lin.Distance(p) > tol) return std::nullopt;
+  for (const TopoDS_Face& face : faces) {
+    Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+    if (s.IsNull() || !Handle(Geom_Plane)::DownCast(s).IsNull()) continue;
+    for (double w : {0.25, 0.5, 0.75}) {
+      GeomAPI_ProjectPointOnSurf on(p0.Translated(w * gp_Vec(p0, p1)), s);
+      if (on.NbPoints() == 0 || on.LowerDistance() > 1e-7) return std::nullopt;
+    }
+  }
   return geo::Line{vec(p0), vec(lin.Direction())};
 }
 
@@ -445,7 +461,7 @@ geo::Curve edge_curve(const TopoDS_Edge& forward, const std::vector<TopoDS_Face>
     return *iso;
   }
   if (!c.IsNull()) {
-    if (std::optional<geo::Curve> line = straight_curve(forward, c, f, l)) {
+    if (std::optional<geo::Curve> line = straight_curve(forward, c, f, l, faces)) {
       warnings->push_back("edge #" + std::to_string(index) + ": " + c->DynamicType()->Name() +
                           " recognised as a line (its poles are on one)");
       return *line;

@@ -169,13 +169,11 @@ TEST(FromShape, TwoFusedSpheresWriteBack) {
 
 // The same hour: a torus (R 4, r 3) turned 90° about (1, 2, 3), a cone (radii 0 and 1,
 // height 1) and a unit box, all at (-20, -20, -20), fused
-// (fuzz/corpus/from_occt/regress-fuse-torus-cone-box). Not fixed yet (DISABLED): the
-// round trip's edge e11 on the torus face f2 is read as a straight line (a short section
-// edge, straight within the reader's tolerance), which lies off the torus by more than
-// the 1e-7 it is written with: BRepCheck_InvalidCurveOnSurface. The line recognition
-// must keep such an edge's curve (or its exact section) where a line would leave a
-// curved face.
-TEST(FromShape, DISABLED_ATorusConeAndBoxFusedWriteBack) {
+// (fuzz/corpus/from_occt/regress-fuse-torus-cone-box). A short section edge on the torus,
+// straight within its boolean's tolerance, was read as a line that left the torus by
+// more than the 1e-7 it is written with (BRepCheck_InvalidCurveOnSurface on the round
+// trip); a line is now taken only where it lies on the edge's curved faces to 1e-7.
+TEST(FromShape, ATorusConeAndBoxFusedWriteBack) {
   TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(4, 3).Shape(), gp_Dir(1, 2, 3), 6, gp_Vec(-20, -20, -20));
   TopoDS_Shape cone = placed(BRepPrimAPI_MakeCone(0, 1, 1).Shape(), gp::DZ(), 0, gp_Vec(-20, -20, -20));
   TopoDS_Shape box = placed(BRepPrimAPI_MakeBox(1, 1, 1).Shape(), gp::DZ(), 0, gp_Vec(-20, -20, -20));
