@@ -26,6 +26,7 @@ bin=$root/build-fuzz/bin/$target
 [ -x "$bin" ] || { echo "fuzz_long_run: $bin is not built (docs/fuzzing.md, \"Long runs\")" >&2; exit 2; }
 
 mkdir -p "$work/corpus" "$work/artifacts"
+work=$(cd "$work" && pwd)  # absolute: a target may change its working folder (fuzz_cli_args does)
 [ -d "$root/fuzz/corpus/$name" ] && cp -rn "$root/fuzz/corpus/$name/." "$work/corpus/"
 parallel=(-jobs=2 -workers=2)
 for flag in "$@"; do case "$flag" in -fork=*) parallel=() ;; esac; done
@@ -35,7 +36,7 @@ cd "$work" || exit 2
 before=$(ls corpus | wc -l)
 start=$(date -u +%FT%TZ)
 /usr/bin/time -f "%e %U %S" -o time.txt "$bin" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=60 \
-  -artifact_prefix="$work/artifacts/" "${parallel[@]}" "$@" corpus >run.log 2>&1
+  -artifact_prefix="$work/artifacts/" "${parallel[@]}" "$@" "$work/corpus" >run.log 2>&1
 # (time writes "Command exited with non-zero status N" first when the fuzzer found something)
 read -r wall user sys < <(tail -n 1 time.txt)
 {
