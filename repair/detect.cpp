@@ -108,6 +108,24 @@ Detection run(detail::DetectContext& c) {
   return d;
 }
 
+// The detector that finds problems of type t (each finds its types whatever the others
+// found: they share the context's measures only).
+void run_for(detail::DetectContext& c, ProblemType t, std::vector<Problem>& out) {
+  switch (t) {
+    case ProblemType::face_gap:
+    case ProblemType::edge_gap:
+    case ProblemType::multi_face_gap: detail::detect_gaps(c, out); break;
+    case ProblemType::pinched_face: detail::detect_pinched(c, out); break;
+    case ProblemType::small_face_chain:
+    case ProblemType::sliver_face:
+    case ProblemType::small_face: detail::detect_small_and_sliver(c, out); break;
+    case ProblemType::short_edge_chain:
+    case ProblemType::short_edge: detail::detect_short_edges(c, out); break;
+    case ProblemType::same_geometry_faces: detail::detect_same_geometry(c, out); break;
+    case ProblemType::mergeable_edges: detail::detect_mergeable(c, out); break;
+  }
+}
+
 template <class H>
 std::vector<H> sorted(const std::unordered_set<H>& s) {
   std::vector<H> v(s.begin(), s.end());
@@ -186,6 +204,17 @@ Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbour
   detail::Scope s{sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
   detail::DetectContext c(b, tol, std::move(s), false);
   return run(c);
+}
+
+std::vector<Problem> detect_near_of_type(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n,
+                                         ProblemType t) {
+  detail::Scope s{sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
+  detail::DetectContext c(b, tol, std::move(s), false);
+  std::vector<Problem> all, mine;
+  run_for(c, t, all);
+  for (Problem& p : all)
+    if (p.type == t) mine.push_back(std::move(p));
+  return mine;
 }
 
 }  // namespace kintsugi

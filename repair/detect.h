@@ -49,5 +49,9 @@ Neighbourhood neighbourhood(const Body& b, const Touched& t);
 
 // Every problem anchored in `n` (in the paper's order of types).
 Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n);
+// Only the problems of type t anchored in `n`: exactly detect_near's of that type, by
+// running only the detector that finds them (detectors share measures, never results).
+std::vector<Problem> detect_near_of_type(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n,
+                                         ProblemType t);
 
 }  // namespace kintsugi

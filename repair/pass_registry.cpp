@@ -73,7 +73,7 @@ std::vector<Problem> detect_for(const Pass& p, const Body& b, const geo::Toleran
 
 std::vector<Problem> detect_near_for(const Pass& p, const Body& b, const geo::Tolerances& tol, const Touched& t) {
   if (p.detect_near) return p.detect_near(b, tol, t);
-  return only(detect_near(b, tol, neighbourhood(b, t)).problems, p.type);
+  return detect_near_of_type(b, tol, neighbourhood(b, t), p.type);
 }
 
 }  // namespace kintsugi

@@ -50,13 +50,15 @@ geo::Surface scaled(const geo::Surface& s, double k) {
 
 geo::Tolerances tol_for(const Body& b, double t) { return geo::Tolerances::for_model(t, model_size(b)); }
 
+std::string describe_one(const Problem& p) {
+  std::string s = std::string(problem_name(p.type)) + " [";
+  for (auto& e : element_names(p)) s += e + " ";
+  return s + "] " + std::to_string(p.measure) + " " + subcase_name(p);
+}
+
 std::string describe(const Detection& d) {
   std::string s;
-  for (const Problem& p : d.problems) {
-    s += std::string(problem_name(p.type)) + " [";
-    for (auto& e : element_names(p)) s += e + " ";
-    s += "] " + std::to_string(p.measure) + " " + subcase_name(p) + "\n";
-  }
+  for (const Problem& p : d.problems) s += describe_one(p) + "\n";
   return s;
 }
 
@@ -358,6 +360,41 @@ TEST(Detect, GapsByHowManyFacesTheySpan) {
   Detection d = detect(b, tol_for(b, 0.01));
   EXPECT_EQ(d.count(ProblemType::multi_face_gap), 1) << describe(d);
   EXPECT_EQ(d.problems.size(), 1u) << describe(d);
+}
+
+// detect_near_of_type runs one detector; what it finds must be exactly detect_near's
+// problems of that type, in the same order, on random zoo models around random touched
+// elements (the pass loop re-detects each repair's own type with it).
+RC_GTEST_PROP(Detect, NearOfOneTypeIsNearFilteredToIt, ()) {
+  const int which = *rc::gen::inRange(0, 4);
+  Body b = which == 0 ? build::box(1, 1, 1)
+         : which == 1 ? build::cylinder(1, 2)
+         : which == 2 ? build::pyramid(build::regular_polygon(4, 1), 1)
+                      : build::grid_box(24);
+  const double t = 0.02;
+  const int n = *rc::gen::inRange(1, 4);
+  for (int i = 0; i < n; ++i) {
+    std::string error;
+    zoo::inject(b, *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end())),
+                *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &error);
+  }
+  Touched touched;
+  const std::vector<VertexH> vs = b.vertices();
+  const std::vector<EdgeH> es = b.edges();
+  const std::vector<FaceH> fs = b.faces();
+  for (int i = *rc::gen::inRange(1, 4); i-- > 0;) touched.vertices.insert(vs[*rc::gen::inRange<std::size_t>(0, vs.size())]);
+  for (int i = *rc::gen::inRange(0, 3); i-- > 0;) touched.edges.insert(es[*rc::gen::inRange<std::size_t>(0, es.size())]);
+  for (int i = *rc::gen::inRange(0, 2); i-- > 0;) touched.faces.insert(fs[*rc::gen::inRange<std::size_t>(0, fs.size())]);
+  const geo::Tolerances tol = tol_for(b, t);
+  const Neighbourhood near = neighbourhood(b, touched);
+  const Detection all = detect_near(b, tol, near);
+  for (ProblemType type : kAllProblemTypes) {
+    std::vector<std::string> expected, got;
+    for (const Problem& p : all.problems)
+      if (p.type == type) expected.push_back(describe_one(p));
+    for (const Problem& p : detect_near_of_type(b, tol, near, type)) got.push_back(describe_one(p));
+    RC_ASSERT(got == expected);
+  }
 }
 
 }  // namespace
