@@ -62,7 +62,8 @@ ToleranceSuggestion suggest_tolerance(const Body& b) {
   // feature: where it falls inside the gap, it only decides where in the gap to be.
   std::vector<std::pair<double, double>> readings;  // (sqrt area, width)
   for (EdgeH e : b.edges()) {
-    if (b.is_border(halfedge_of(e, 0)) || b.is_border(halfedge_of(e, 1))) continue;  // along a gap: found by topology, not by size
+    // Along a gap: gaps are found by topology, not by size.
+    if (b.is_border(halfedge_of(e, 0)) || b.is_border(halfedge_of(e, 1))) continue;
     sizes.push_back({"edge " + e.str() + " (length)", edge_length(b, e)});
   }
   for (FaceH f : b.faces()) {
