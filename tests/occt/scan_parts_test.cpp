@@ -15,6 +15,7 @@
 #include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
+#include "invariants/region_validity.h"
 #include "io/occt/exchange.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
@@ -221,7 +222,11 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
 
   BeautifyOptions opt;
   opt.check_topology_each_repair = false;
+  // KINTSUGI_SCAN_OCCT_GATE=1: with the OpenCASCADE half of the validity gate, as the CLI
+  // runs it (io::register_occt_region_check), to see what it refuses.
+  if (std::getenv("KINTSUGI_SCAN_OCCT_GATE")) io::register_occt_region_check(out);
   BeautifyReport rep = beautify(out, geo::Tolerances::for_model(t, model_size(out)), opt);
+  set_external_region_check(nullptr);
   const std::string left = describe_left(rep);
   if (std::getenv("KINTSUGI_SCAN_KEEP")) {
     io::export_cad(out, path + ".out.step", io::CadFormat::step, &err);
