@@ -157,6 +157,15 @@ expect 2 "detect nan tolerance" -- "$K" detect "$dir/box.json" --tol nan
 expect 0 "detect default tolerance" -- "$K" detect "$dir/box.json"
 contains "tolerance" "the default tolerance is said"
 
+# Every output is checked before anything is written (fuzz_cli_args, 2026-12-03: a bad
+# --html after a good -o left OUT behind with exit 2).
+rm -f "$dir/left.brep"
+expect 2 "beautify with an empty --html" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --html ''
+contains "is not a file name" "the empty --html is named"
+[ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for a bad --html"; } || pass=$((pass + 1))
+expect 2 "beautify with --report in a missing folder" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --report "$dir/no/such/r.json"
+[ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for a bad --report"; } || pass=$((pass + 1))
+
 # Without --tol or meta.tolerance, detect and beautify use the tolerance the model
 # suggests and say so: paper object 4's sliver (0.32 wide) is far below its faces (7).
 # Where no gap stands out (paper object 10: defects up to 0.49, features from 1.25),
