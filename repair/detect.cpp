@@ -200,16 +200,22 @@ bool Neighbourhood::anchors(const Body& b, const Problem& p) const {
   }
 }
 
+namespace {
+// The scope a local detection starts from, in handle order (so results do not depend on
+// hash order).
+detail::Scope scope_of(const Neighbourhood& n) {
+  return {sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
+}
+}  // namespace
+
 Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
-  detail::Scope s{sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
-  detail::DetectContext c(b, tol, std::move(s), false);
+  detail::DetectContext c(b, tol, scope_of(n), false);
   return run(c);
 }
 
 std::vector<Problem> detect_near_of_type(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n,
                                          ProblemType t) {
-  detail::Scope s{sorted(n.faces), sorted(n.edges), sorted(n.vertices), sorted(n.borders)};
-  detail::DetectContext c(b, tol, std::move(s), false);
+  detail::DetectContext c(b, tol, scope_of(n), false);
   std::vector<Problem> all, mine;
   run_for(c, t, all);
   for (Problem& p : all)
