@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 namespace kintsugi::cli {
 
@@ -70,6 +71,19 @@ std::optional<long long> Args::integer(const std::string& name, long long fallba
     return std::nullopt;
   }
   return x;
+}
+
+std::optional<std::string> Args::bad_output(const std::vector<std::string>& options) const {
+  for (const std::string& option : options) {
+    if (!has(option)) continue;
+    const std::filesystem::path p(*value(option));
+    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    std::error_code ec;
+    if (p.empty() || !p.has_filename() || !std::filesystem::is_directory(folder, ec) ||
+        std::filesystem::is_directory(p, ec))
+      return option + " '" + p.string() + "' is not a file name in an existing folder";
+  }
+  return std::nullopt;
 }
 
 }  // namespace kintsugi::cli

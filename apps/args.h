@@ -26,6 +26,12 @@ class Args {
   std::optional<long long> integer(const std::string& name, long long fallback, long long lo, long long hi,
                                    std::string* error) const;
 
+  // Of the given output options, the first whose value is not a file name in an existing
+  // folder (empty, ends in '/', names a folder, or its folder is missing), with the reason;
+  // nullopt when all are fine. Commands with several outputs check them all before writing
+  // any: one found bad after another was written would leave that one behind with exit 2.
+  std::optional<std::string> bad_output(const std::vector<std::string>& options) const;
+
  private:
   std::vector<std::string> positional_;
   std::map<std::string, std::string> values_;

@@ -75,17 +75,9 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     err << "kintsugi beautify: " << (error.empty() ? "--tol must be a positive number" : error) << "\n";
     return kExitBadInput;
   }
-  // Every output is named and its folder exists before anything is written: a bad
-  // --html or --report found after OUT was written would leave OUT behind with exit 2.
-  for (const char* option : {"-o", "--report", "--html", "--png"}) {
-    if (!args.has(option)) continue;
-    const std::filesystem::path p(*args.value(option));
-    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    std::error_code ec;
-    if (p.empty() || !p.has_filename() || !std::filesystem::is_directory(folder, ec)) {
-      err << "kintsugi beautify: " << option << " '" << p.string() << "' is not a file name in an existing folder\n";
-      return kExitBadInput;
-    }
+  if (auto bad = args.bad_output({"-o", "--report", "--html", "--png"})) {
+    err << "kintsugi beautify: " << *bad << "\n";
+    return kExitBadInput;
   }
   const std::string in = args.positional()[0], out_path = *args.value("-o");
   if (args.has("--report") && *args.value("--report") == in) {

@@ -51,6 +51,10 @@ int cmd_view(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     err << "kintsugi view: " << (error.empty() ? "--chordal must be a positive number" : error) << "\n";
     return kExitBadInput;
   }
+  if (auto bad = args.bad_output({"-o", "--png"})) {
+    err << "kintsugi view: " << *bad << "\n";
+    return kExitBadInput;
+  }
   const std::string in = args.positional()[0];
   auto model = load_model(in, &error);
   if (!model) {

@@ -163,6 +163,14 @@ rm -f "$dir/left.brep"
 expect 2 "beautify with an empty --html" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --html ''
 contains "is not a file name" "the empty --html is named"
 [ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for a bad --html"; } || pass=$((pass + 1))
+mkdir -p "$dir/afolder"
+expect 2 "beautify with --html naming a folder" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --html "$dir/afolder"
+contains "is not a file name" "the folder given as --html is named"
+[ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for --html naming a folder"; } || pass=$((pass + 1))
+rm -f "$dir/left.html"
+expect 2 "view with --png naming a folder" -- "$K" view "$dir/box.json" -o "$dir/left.html" --png "$dir/afolder"
+contains "is not a file name" "the folder given as --png is named"
+[ -e "$dir/left.html" ] && { fail=$((fail + 1)); echo "FAIL: view left its page behind for --png naming a folder"; } || pass=$((pass + 1))
 expect 2 "beautify with --report in a missing folder" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --report "$dir/no/such/r.json"
 [ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for a bad --report"; } || pass=$((pass + 1))
 
