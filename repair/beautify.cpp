@@ -149,13 +149,15 @@ struct Queues {
   void refresh(const Body& b, const geo::Tolerances& tol, const Touched& region) {
     if (region.empty()) return;
     Neighbourhood n = neighbourhood(b, region);
-    for (auto& q : by_type) {
-      std::vector<Problem> keep;
-      for (Problem& p : q)
-        if (!n.anchors(b, p)) keep.push_back(std::move(p));
-      q = std::move(keep);
-    }
+    std::vector<std::vector<Problem>*> lists;
+    for (auto& q : by_type) lists.push_back(&q);
+    drop_anchored(b, n, lists);
     for (Problem& p : detect_near(b, tol, n).problems) by_type[slot(p.type)].push_back(std::move(p));
+  }
+  std::vector<Problem> all() const {
+    std::vector<Problem> out;
+    for (const auto& q : by_type) out.insert(out.end(), q.begin(), q.end());
+    return out;
   }
 };
 
@@ -205,19 +207,20 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
       continue;
     }
     region.merge(touched);
-    // What the repair left or made of this pass's own type (Table 1's diagonal).
-    for (Problem& q : detect_near_for(*pass, b, tol, touched)) {
+    // What the repair left or made of this pass's own type (Table 1's diagonal). A
+    // problem refused earlier in this pass may have been changed by this repair: it is
+    // dropped and found again if it still exists. The pending ones stay queued (found
+    // again, they are already pending), but what is left of them is found too.
+    Neighbourhood n = neighbourhood(b, touched);
+    std::vector<const Problem*> waiting;
+    for (const Problem& q : queue) waiting.push_back(&q);
+    drop_anchored(b, n, {&left_of_type}, waiting);
+    for (Problem& q : detect_near_for(*pass, b, tol, n)) {
       if (pending.count(q.elements) || attempts[q.elements] >= kMaxAttempts) continue;
       ++attempts[q.elements];
       pending.insert(q.elements);
       queue.push_back(std::move(q));
     }
-    // A problem refused earlier in this pass may have been changed by this repair.
-    Neighbourhood n = neighbourhood(b, touched);
-    std::vector<Problem> still;
-    for (Problem& q : left_of_type)
-      if (!n.anchors(b, q)) still.push_back(std::move(q));
-    left_of_type = std::move(still);
   }
   return region;
 }
@@ -321,6 +324,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
       auto start = clock::now();
       q.refresh(b, tol, since_refresh);
       since_refresh.clear();
+      if (options.after_refresh) options.after_refresh(b, q.all());
       std::vector<Problem> queue = std::move(q.by_type[slot(t)]);
       q.by_type[slot(t)].clear();
       std::vector<Problem> left;
@@ -335,6 +339,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
     // fixed before it (a break of Table 1's order), is found here too.
     q.refresh(b, tol, since_refresh);
     since_refresh.clear();
+    if (options.after_refresh) options.after_refresh(b, q.all());
     bool any_left = false;
     for (const auto& by : q.by_type) any_left = any_left || !by.empty();
     if (repaired == 0 || !any_left) break;

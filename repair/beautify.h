@@ -84,6 +84,11 @@ struct BeautifyOptions {
   // change the body further (through operators) and what was touched. The audit's tests
   // use it to break a pass on purpose and see the audit catch it.
   std::function<void(Body&, ProblemType, Touched&)> after_repair;
+  // Test hook: called each time the queues were brought up to date by local re-detection
+  // (before each pass and after each round), with every problem they hold. They must be
+  // exactly what detect() finds on the body then: the test of spec/problems.md,
+  // "Detecting near a repair", at every step rather than only at the end.
+  std::function<void(const Body&, const std::vector<Problem>&)> after_refresh;
   // The validity gate's "lies on" limit (invariants/region_validity.h); 0: beautify() and
   // run_pass() set it to max(precision, the input's largest deviation).
   double lies_on = 0.0;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace kintsugi {
 
@@ -141,39 +142,67 @@ Detection detect(const Body& b, const geo::Tolerances& tol) {
   return run(c);
 }
 
+void Neighbourhood::add_face(const Body& b, FaceH f) {
+  if (!b.alive(f) || !faces.insert(f).second) return;
+  for (LoopH l : b.loops_of(f)) {
+    if (b.is_lone(l)) vertices.insert(b.lone_vertex(l));
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      edges.insert(edge_of(h));
+      vertices.insert(b.origin(h));
+      if (b.is_border(twin(h))) borders.insert(b.loop(twin(h)));
+    }
+  }
+}
+
+void Neighbourhood::add_elements_of(const Body& b, const Problem& p) {
+  for (const Element& e : p.elements)
+    std::visit(
+        [&](auto h) {
+          using H = decltype(h);
+          if (!b.alive(h)) return;
+          if constexpr (std::is_same_v<H, FaceH>) add_face(b, h);
+          if constexpr (std::is_same_v<H, EdgeH>) edges.insert(h);
+          if constexpr (std::is_same_v<H, VertexH>) vertices.insert(h);
+          if constexpr (std::is_same_v<H, LoopH>)
+            if (b.is_border(h)) borders.insert(h);
+        },
+        e);
+}
+
 Neighbourhood neighbourhood(const Body& b, const Touched& t) {
   Neighbourhood n;
-  std::unordered_set<FaceH> core;
   auto add_faces_of_edge = [&](EdgeH e) {
     for (unsigned s = 0; s < 2; ++s) {
       FaceH f = b.face(halfedge_of(e, s));
-      if (f.valid()) core.insert(f);
+      if (f.valid()) n.add_face(b, f);
     }
   };
-  for (FaceH f : t.faces)
-    if (b.alive(f)) core.insert(f);
+  for (FaceH f : t.faces) n.add_face(b, f);
   for (EdgeH e : t.edges)
     if (b.alive(e)) add_faces_of_edge(e);
   for (VertexH v : t.vertices)
     if (b.alive(v))
       for (HalfedgeH h : b.outgoing(v)) add_faces_of_edge(edge_of(h));
-  n.faces = core;
-  for (FaceH f : core)
-    for (LoopH l : b.loops_of(f))
-      for (HalfedgeH h : b.loop_halfedges(l)) {
-        FaceH g = b.face(twin(h));
-        if (g.valid()) n.faces.insert(g);
-      }
-  for (FaceH f : n.faces)
-    for (LoopH l : b.loops_of(f)) {
-      if (b.is_lone(l)) n.vertices.insert(b.lone_vertex(l));
-      for (HalfedgeH h : b.loop_halfedges(l)) {
-        n.edges.insert(edge_of(h));
-        n.vertices.insert(b.origin(h));
-        if (b.is_border(twin(h))) n.borders.insert(b.loop(twin(h)));
-      }
-    }
   return n;
+}
+
+void drop_anchored(const Body& b, Neighbourhood& n, const std::vector<std::vector<Problem>*>& lists,
+                   const std::vector<const Problem*>& grow_only) {
+  // Anchoring is judged against n as it was (a problem sharing a face with a dropped one
+  // is not itself changed by the repair), then against the grown n.
+  std::vector<const Problem*> anchored;
+  for (const std::vector<Problem>* list : lists)
+    for (const Problem& p : *list)
+      if (n.anchors(b, p)) anchored.push_back(&p);
+  for (const Problem* p : grow_only)
+    if (n.anchors(b, *p)) anchored.push_back(p);
+  for (const Problem* p : anchored) n.add_elements_of(b, *p);
+  for (std::vector<Problem>* list : lists) {
+    std::vector<Problem> keep;
+    for (Problem& p : *list)
+      if (!n.anchors(b, p)) keep.push_back(std::move(p));
+    *list = std::move(keep);
+  }
 }
 
 bool Neighbourhood::anchors(const Body& b, const Problem& p) const {

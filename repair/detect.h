@@ -31,8 +31,11 @@ struct Detection {
 Detection detect(const Body& b, const geo::Tolerances& tol);
 
 // The neighbourhood of touched elements: the faces touched, on a touched edge or around
-// a touched vertex (the core), and the faces across the core's edges; the edges and
-// vertices of all these faces, and the border cycles across those edges.
+// a touched vertex (the core); the edges and vertices of these faces, and the border
+// cycles across those edges. It does not reach across the core's edges: a face beside a
+// repair whose own boundary did not change keeps its problems (spec/problems.md,
+// "Detecting near a repair"), and a plate under thousands of features stays out of the
+// neighbourhood of a repair on one of them.
 struct Neighbourhood {
   std::unordered_set<FaceH> faces;
   std::unordered_set<EdgeH> edges;
@@ -44,8 +47,22 @@ struct Neighbourhood {
   // (faces; edges for short edges; the vertex for mergeable edges; the border cycle for
   // gaps) lie in the neighbourhood. A problem with a dead element is anchored anywhere.
   bool anchors(const Body& b, const Problem& p) const;
+  // Adds a live face with its edges, vertices and the border cycles across its edges.
+  void add_face(const Body& b, FaceH f);
+  // Adds p's live elements: faces as add_face does, edges, vertices, border cycles.
+  void add_elements_of(const Body& b, const Problem& p);
 };
 Neighbourhood neighbourhood(const Body& b, const Touched& t);
+
+// Replacing known problems by what detection finds near a repair. Drops from each list
+// the problems anchored in n and grows n by their live elements: what is left of a
+// problem the repair changed is found again from them (the pieces of a chain of small
+// faces cut by a face that stopped being small, which the core alone does not reach).
+// Then drops what the grown n anchors too, so that detect_near(b, tol, n) finds each
+// dropped problem that still exists and nothing that was kept. Problems in `grow_only`
+// grow n when anchored but stay where they are (a pass's own pending queue).
+void drop_anchored(const Body& b, Neighbourhood& n, const std::vector<std::vector<Problem>*>& lists,
+                   const std::vector<const Problem*>& grow_only = {});
 
 // Every problem anchored in `n` (in the paper's order of types).
 Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n);

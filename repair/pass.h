@@ -12,6 +12,7 @@
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
 #include "problems/problem.h"
+#include "repair/detect.h"
 #include "repair/touched.h"
 
 #include <string>
@@ -33,14 +34,14 @@ struct RepairContext {
 
 using RepairFn = std::string (*)(RepairContext&);
 using DetectAllFn = std::vector<Problem> (*)(const Body&, const geo::Tolerances&);
-using DetectNearFn = std::vector<Problem> (*)(const Body&, const geo::Tolerances&, const Touched&);
+using DetectNearFn = std::vector<Problem> (*)(const Body&, const geo::Tolerances&, const Neighbourhood&);
 
 struct Pass {
   ProblemType type;
   const char* title;    // "short-edge chains": for --help, demo and docs
   const char* summary;  // one line: what the repair does
   RepairFn repair;
-  // Detectors: over the whole body, and near touched elements. Null: the shared
+  // Detectors: over the whole body, and in the neighbourhood of a repair. Null: the shared
   // detectors (repair/detect.h) filtered to `type`, which is what every pass uses today.
   DetectAllFn detect_all = nullptr;
   DetectNearFn detect_near = nullptr;
@@ -57,7 +58,7 @@ const std::vector<ProblemType>& may_create(ProblemType t);
 
 // The pass's detectors, defaulting to the shared ones.
 std::vector<Problem> detect_for(const Pass& p, const Body& b, const geo::Tolerances& tol);
-std::vector<Problem> detect_near_for(const Pass& p, const Body& b, const geo::Tolerances& tol, const Touched& t);
+std::vector<Problem> detect_near_for(const Pass& p, const Body& b, const geo::Tolerances& tol, const Neighbourhood& n);
 
 }  // namespace kintsugi
 

@@ -71,9 +71,9 @@ std::vector<Problem> detect_for(const Pass& p, const Body& b, const geo::Toleran
   return only(detect(b, tol).problems, p.type);
 }
 
-std::vector<Problem> detect_near_for(const Pass& p, const Body& b, const geo::Tolerances& tol, const Touched& t) {
-  if (p.detect_near) return p.detect_near(b, tol, t);
-  return detect_near_of_type(b, tol, neighbourhood(b, t), p.type);
+std::vector<Problem> detect_near_for(const Pass& p, const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
+  if (p.detect_near) return p.detect_near(b, tol, n);
+  return detect_near_of_type(b, tol, n, p.type);
 }
 
 }  // namespace kintsugi

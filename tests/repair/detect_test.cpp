@@ -397,5 +397,61 @@ RC_GTEST_PROP(Detect, NearOfOneTypeIsNearFilteredToIt, ()) {
   }
 }
 
+// A repair that makes a middle face of a chain of small faces large — here merging it
+// into the big side face beside it (kef), which touches only that side face — cuts the
+// chain in two. The pieces meet the merged face across edges nothing touched, so the
+// repair's neighbourhood (the merged face, its edges and vertices) holds none of them:
+// they are found again from the dropped chain's own faces (drop_anchored grows the
+// neighbourhood by them). Replacing what is anchored by what detect_near finds must give
+// exactly what a whole-body detection finds.
+TEST(Detect, AChainCutByARepairIsFoundAgainInItsPieces) {
+  Body b = build::pyramid(build::regular_polygon(6, 1), 1);
+  VertexH apex;
+  for (VertexH v : b.vertices())
+    if (b.outgoing(v).size() == 6) apex = v;
+  ASSERT_TRUE(apex.valid());
+  zoo::Rng rng(3);
+  zoo::make::small_face_chain(b, apex, 0.02, rng);
+  const geo::Tolerances tol = tol_for(b, 0.05);
+  std::vector<Problem> known = detect(b, tol).problems;
+  const Problem* chain = nullptr;
+  for (const Problem& p : known)
+    if (p.type == ProblemType::small_face_chain) chain = &p;
+  ASSERT_NE(chain, nullptr) << describe(detect(b, tol));
+  const std::vector<FaceH> faces = chain->all<FaceH>();
+  ASSERT_EQ(faces.size(), 4u);
+  // A face of the chain with two chain neighbours, and its edge to a face off the chain.
+  HalfedgeH cut;
+  for (FaceH f : faces) {
+    int in_chain = 0;
+    HalfedgeH off;
+    for (HalfedgeH h : b.loop_halfedges(b.outer_loop(f))) {
+      FaceH g = b.face(twin(h));
+      if (std::find(faces.begin(), faces.end(), g) != faces.end())
+        ++in_chain;
+      else
+        off = twin(h);
+    }
+    if (in_chain == 2 && off.valid()) cut = off;
+  }
+  ASSERT_TRUE(cut.valid());
+  const FaceH side = b.face(cut);
+  ASSERT_FALSE(euler::can_kef(b, cut).has_value());
+  ASSERT_TRUE(euler::kef(b, cut).ok());
+  Touched touched;
+  touched.faces.insert(side);
+  Neighbourhood n = neighbourhood(b, touched);
+  drop_anchored(b, n, {&known});
+  for (Problem& p : detect_near(b, tol, n).problems) known.push_back(std::move(p));
+  std::vector<std::string> want, got;
+  for (const Problem& p : detect(b, tol).problems) want.push_back(describe_one(p));
+  for (const Problem& p : known) got.push_back(describe_one(p));
+  std::sort(want.begin(), want.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, want);
+  // The cut left a single small face and a chain of two, neither touching the core.
+  EXPECT_EQ(std::count_if(want.begin(), want.end(), [](const std::string& s) { return s.rfind("small_face ", 0) == 0; }), 1);
+}
+
 }  // namespace
 }  // namespace kintsugi
