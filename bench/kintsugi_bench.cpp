@@ -36,7 +36,11 @@
 //     [{"faces", "build_seconds", "model_rss_bytes", "detect_seconds",
 //     "beautify_seconds", "passes": {type: s}, "repaired", "not_repaired",
 //     "peak_rss_bytes"}], "exponent": {"detect", "beautify"}}.
+#include "bench/bench_child.h"
 #include "bench/solvers_bench.h"
+#ifdef KINTSUGI_HAVE_OCCT
+#include "bench/occt_heal_bench.h"
+#endif
 #include "invariants/topology_check.h"
 #include "io/native_json.h"
 #include "repair/beautify.h"
@@ -64,21 +68,10 @@
 
 namespace {
 
-long long peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<long long>(u.ru_maxrss) * 1024;  // Linux reports kilobytes
-}
-
-// The resident set size now (/proc/self/statm), or -1.
-long long current_rss_bytes() {
-  long long pages = -1, resident = -1;
-  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%lld %lld", &pages, &resident) != 2) resident = -1;
-    std::fclose(f);
-  }
-  return resident < 0 ? -1 : resident * ::sysconf(_SC_PAGESIZE);
-}
+using kintsugi::bench::current_rss_bytes;
+using kintsugi::bench::json_in_child;
+using kintsugi::bench::peak_rss_bytes;
+using kintsugi::bench::seconds_since;
 
 int usage(std::ostream& os, int code) {
   os << "usage: kintsugi-bench memory --faces N [--check]\n"
@@ -92,46 +85,16 @@ int usage(std::ostream& os, int code) {
         "  beautify  Detects and beautifies the scalable family at each size (default\n"
         "          10000,100000; rate 0.01), each in a child process; prints seconds per pass,\n"
         "          peak memory and the fitted exponent of time against faces.\n"
+        "       kintsugi-bench occt-heal [--faces N] [--rate R] [--seed S] [--dir D]\n"
+        "  occt-heal  Writes the family with N faces (default 10000; rate 0.01) to STEP in D\n"
+        "          (default the temporary folder; kept there and reused) and heals it twice, each in\n"
+        "          a child process: kintsugi (read, beautify) and OpenCASCADE (read, ShapeFix_Shape,\n"
+        "          UnifySameDomain); prints both, the counts each left, and the ratio of the heal\n"
+        "          times (built with OpenCASCADE only).\n"
         "       kintsugi-bench solvers\n"
         "  solvers Times geo::meet_point (2000 cases, 5 times) and geo::fit_surface_like (400\n"
         "          fits) on fixed random cases; prints the cost per call and checksums of the answers.\n";
   return code;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Runs `work` in a child process and returns the JSON it produced (plus its peak RSS as
-// "peak_rss_bytes"), or {"error"}.
-nlohmann::ordered_json json_in_child(const std::function<nlohmann::ordered_json()>& work) {
-  int fds[2];
-  if (::pipe(fds) != 0) return {{"error", "pipe failed"}};
-  std::cout.flush();
-  pid_t pid = ::fork();
-  if (pid < 0) return {{"error", "fork failed"}};
-  if (pid == 0) {
-    ::close(fds[0]);
-    nlohmann::ordered_json r;
-    try {
-      r = work();
-    } catch (const std::exception& e) {
-      r = {{"error", e.what()}};
-    }
-    r["peak_rss_bytes"] = peak_rss_bytes();
-    std::string text = r.dump();
-    ssize_t n = ::write(fds[1], text.data(), text.size());
-    ::_exit(n == ssize_t(text.size()) ? 0 : 1);
-  }
-  ::close(fds[1]);
-  std::string text;
-  char buf[4096];
-  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) text.append(buf, std::size_t(n));
-  ::close(fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return {{"error", "the child process failed"}};
-  return nlohmann::ordered_json::parse(text);
 }
 
 // Runs `step` in a child process; returns {"seconds", "peak_rss_bytes"} or {"error"}.
@@ -348,12 +311,57 @@ int bench_beautify(int argc, char** argv) {
   return failed ? 1 : 0;
 }
 
+int bench_occt_heal(int argc, char** argv) {
+  long long faces = 10'000, seed = 1;
+  double rate = 0.01;
+  std::string dir = std::filesystem::temp_directory_path().string();
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    const std::string v = i + 1 < argc ? argv[i + 1] : "";
+    char* end = nullptr;
+    if (a == "--help") return usage(std::cout, 0);
+    if (a != "--faces" && a != "--rate" && a != "--seed" && a != "--dir") {
+      std::cerr << "kintsugi-bench: unknown argument '" << a << "'\n";
+      return usage(std::cerr, 2);
+    }
+    ++i;
+    if (a == "--dir") {
+      dir = v;
+      if (!std::filesystem::is_directory(dir)) {
+        std::cerr << "kintsugi-bench occt-heal: --dir '" << dir << "' is not a folder\n";
+        return 2;
+      }
+    } else if (a == "--rate") {
+      rate = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || !(rate >= 0 && rate <= 1)) {
+        std::cerr << "kintsugi-bench occt-heal: --rate needs a number from 0 to 1\n";
+        return 2;
+      }
+    } else {
+      const long long n = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || (a == "--faces" && (n < 10 || n > 10'000'000))) {
+        std::cerr << "kintsugi-bench occt-heal: " << a << " needs a whole number"
+                  << (a == "--faces" ? " from 10 to 10000000" : "") << "\n";
+        return 2;
+      }
+      (a == "--faces" ? faces : seed) = n;
+    }
+  }
+#ifdef KINTSUGI_HAVE_OCCT
+  return kintsugi::bench::bench_occt_heal(faces, rate, seed, dir);
+#else
+  std::cerr << "kintsugi-bench occt-heal: built without OpenCASCADE\n";
+  return 2;
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) return usage(std::cout, 0);
   if (argc >= 2 && std::strcmp(argv[1], "io") == 0) return bench_io(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "beautify") == 0) return bench_beautify(argc, argv);
+  if (argc >= 2 && std::strcmp(argv[1], "occt-heal") == 0) return bench_occt_heal(argc, argv);
   if (argc == 2 && std::strcmp(argv[1], "solvers") == 0) return kintsugi::bench::bench_solvers();
   if (argc < 2 || std::strcmp(argv[1], "memory") != 0) return usage(std::cerr, 2);
   long long faces = -1;
