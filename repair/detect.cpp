@@ -2,9 +2,11 @@
 
 #include "invariants/element_geometry.h"
 #include "repair/detect_detail.h"
+#include "repair/detect_threads.h"
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <type_traits>
 
 namespace kintsugi {
@@ -91,6 +93,50 @@ double DetectContext::edge_length(EdgeH e) const {
   return it->second;
 }
 
+namespace {
+
+// Runs work(i) for i in [0, n) on `threads` threads, each a contiguous block.
+template <class F>
+void in_blocks(std::size_t n, int threads, const F& work) {
+  const std::size_t t = std::size_t(std::max(1, threads));
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < t; ++k)
+    pool.emplace_back([&, k] {
+      for (std::size_t i = n * k / t; i < n * (k + 1) / t; ++i) work(i);
+    });
+  for (std::size_t i = 0; i < n / t; ++i) work(i);
+  for (std::thread& th : pool) th.join();
+}
+
+}  // namespace
+
+void DetectContext::measure_ahead(int threads) {
+  // Below this, starting threads costs more than it saves.
+  constexpr std::size_t kMinElements = 512;
+  if (!whole || threads <= 1) return;
+  std::vector<EdgeH> edges;
+  for (EdgeH e : scope.edges)
+    if (!geo::is_freeform(b.curve(e))) edges.push_back(e);
+  if (edges.size() >= kMinElements)
+    in_blocks(edges.size(), threads, [&](std::size_t i) { length_dense_[edges[i].idx()] = kintsugi::edge_length(b, edges[i]); });
+  std::vector<FaceH> faces;
+  for (FaceH f : scope.faces) {
+    bool analytic = !geo::is_freeform(b.surface(f));
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) analytic = analytic && !geo::is_freeform(b.curve(edge_of(h)));
+    if (analytic) faces.push_back(f);
+  }
+  if (faces.size() < kMinElements) return;
+  // The faces' measures read edge lengths: all of theirs are in length_dense_ now (none
+  // is written while the threads run).
+  if (edges.size() < kMinElements)
+    for (EdgeH e : edges) length_dense_[e.idx()] = kintsugi::edge_length(b, e);
+  in_blocks(faces.size(), threads, [&](std::size_t i) {
+    face_dense_[faces[i].idx()] = measure(faces[i]);
+    face_done_[faces[i].idx()] = 1;
+  });
+}
+
 }  // namespace detail
 
 namespace {
@@ -139,6 +185,7 @@ std::vector<H> sorted(const std::unordered_set<H>& s) {
 Detection detect(const Body& b, const geo::Tolerances& tol) {
   detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
   detail::DetectContext c(b, tol, std::move(s), true);
+  c.measure_ahead(detect_threads());
   return run(c);
 }
 

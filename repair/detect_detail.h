@@ -72,6 +72,11 @@ class DetectContext {
   const FaceInfo& face(FaceH f) const;     // measured on first use
   double edge_length(EdgeH e) const;       // measured on first use
   Marks marks_faces() const { return Marks(b.face_slots(), whole); }
+  // A whole-body detection's measures taken ahead on `threads` threads: every edge's
+  // length, then every face's measure, where the face and its edges have analytic
+  // geometry (free-form evaluation keeps per-surface state: those are measured when
+  // first asked, as before). The answers are the ones face() and edge_length() would give.
+  void measure_ahead(int threads);
   Marks marks_edges() const { return Marks(b.edge_slots(), whole); }
 
  private:

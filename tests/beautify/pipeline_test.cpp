@@ -8,6 +8,8 @@
 #include "invariants/element_geometry.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/detect_threads.h"
+#include "io/native_json.h"
 #include "repair/pass.h"
 #include "tests/support/left_mismatch.h"
 #include "zoo/zoo.h"
@@ -191,6 +193,34 @@ RC_GTEST_PROP(Pipeline, TheQueuesAreWhatDetectFindsAfterEveryRefreshOnRandomZooM
   Body b = random_zoo_model(t, &what);
   const std::string bad = stale_queues(b, tol_for(b, t));
   if (!bad.empty()) RC_FAIL(what + bad);
+}
+
+// The first full detection measures on several threads (repair/detect_threads.h): one
+// thread and two give the same report and the same output bytes. Families above the
+// size where threads start (512 faces).
+TEST(Pipeline, OneAndTwoThreadsGiveTheSameBytes) {
+  for (std::uint64_t seed : {3u, 8u}) {
+    const zoo::ZooModel m = zoo::family(3000, 0.1, seed);
+    const geo::Tolerances tol = tol_for(m.body, m.tolerance);
+    std::string out[2], report[2];
+    for (int k = 0; k < 2; ++k) {
+      set_detect_threads(k + 1);
+      Body b = m.body.clone();
+      BeautifyOptions o;
+      o.check_topology_each_repair = false;
+      const BeautifyReport r = beautify(b, tol, o);
+      out[k] = io::write_native(b);
+      for (const RepairEntry& e : r.problems) {
+        report[k] += std::string(problem_name(e.problem.type)) + " " + outcome_name(e.outcome) + " " + e.reason + " |";
+        for (const std::string& op : e.operators) report[k] += " " + op;
+        report[k] += "\n";
+      }
+    }
+    set_detect_threads(0);
+    EXPECT_FALSE(report[0].empty()) << "seed " << seed;
+    EXPECT_EQ(report[0], report[1]) << "seed " << seed;
+    EXPECT_TRUE(out[0] == out[1]) << "seed " << seed << ": the outputs differ";
+  }
 }
 
 // The whole-body topology check after every repair (BeautifyOptions::

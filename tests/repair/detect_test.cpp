@@ -6,6 +6,7 @@
 #include "kernel/euler.h"
 #include "repair/detect.h"
 #include "repair/detect_detail.h"
+#include "repair/detect_threads.h"
 #include "zoo/defects.h"
 #include "zoo/zoo.h"
 
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <set>
 
@@ -451,6 +453,39 @@ TEST(Detect, AChainCutByARepairIsFoundAgainInItsPieces) {
   EXPECT_EQ(got, want);
   // The cut left a single small face and a chain of two, neither touching the core.
   EXPECT_EQ(std::count_if(want.begin(), want.end(), [](const std::string& s) { return s.rfind("small_face ", 0) == 0; }), 1);
+}
+
+// A whole-body detection measures faces and edges ahead on several threads
+// (repair/detect_threads.h): the problems, their elements and their measures to the last
+// bit are those of one thread. Models above the size where threads start (512 faces).
+std::string exact_listing(const Detection& d) {
+  std::string s;
+  char buf[64];
+  for (const Problem& p : d.problems) {
+    s += describe_one(p);
+    std::snprintf(buf, sizeof buf, " %a\n", p.measure);
+    s += buf;
+  }
+  return s;
+}
+
+TEST(Detect, OneAndTwoThreadsFindTheSame) {
+  std::vector<std::pair<std::string, zoo::ZooModel>> models;
+  models.emplace_back("family 3000", zoo::family(3000, 0.1, 5));
+  models.emplace_back("family 2000", zoo::family(2000, 0.3, 9));
+  for (auto& [name, m] : models) {
+    const geo::Tolerances tol = tol_for(m.body, m.tolerance);
+    set_detect_threads(1);
+    const std::string one = exact_listing(detect(m.body, tol));
+    set_detect_threads(2);
+    const std::string two = exact_listing(detect(m.body, tol));
+    set_detect_threads(3);
+    const std::string three = exact_listing(detect(m.body, tol));
+    set_detect_threads(0);
+    EXPECT_FALSE(one.empty()) << name;
+    EXPECT_EQ(one, two) << name;
+    EXPECT_EQ(one, three) << name;
+  }
 }
 
 }  // namespace
