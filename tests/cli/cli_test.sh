@@ -321,6 +321,16 @@ if "$K" convert --help | grep -q "STEP"; then
       if ls "$h"/out.* "$h"/.out* >/dev/null 2>&1; then fail=$((fail + 1)); echo "FAIL: $verb $f left an output"; rm -f "$h"/out.* "$h"/.out*; else pass=$((pass + 1)); fi
     done
   done
+  # One reproducer per place fuzz_occt_import's hour crashed OpenCASCADE 7.6.3 (null
+  # dereferences in its STEP translation: StepGeom_CartesianPoint::NbCoordinates,
+  # Standard_Transient::IsKind, ...; docs/fuzzing.md) and the one that loops in
+  # Geom_TrimmedCurve::SetTrim: through the bounded reader, exit 2 naming the file.
+  for f in "$(dirname "$0")"/hostile/occt_*.step; do
+    cp "$f" "$h/"
+    g="$h/$(basename "$f")"
+    expect 2 "check $(basename "$f")" -- env KINTSUGI_READ_TIMEOUT=3 timeout 60 "$K" check "$g"
+    contains "$g" "check $(basename "$f") names the file"
+  done
   expect 2 "a hanging read is stopped" -- env KINTSUGI_READ_TIMEOUT=1 "$K" check "$h/hang.brep"
   contains "did not finish within 1 s" "the time limit is said"
   expect 2 "a malformed read bound is refused" -- env KINTSUGI_READ_TIMEOUT=soon "$K" check "$h/box.step"
