@@ -103,6 +103,36 @@ std::set<std::string> problem_set(const Body& b, double t) {
   return out;
 }
 
+// A face narrower than both tolerances is a sliver at the smaller one and a small face at
+// the larger one once its area's square root lies between them; a model can then have two
+// wide ranges of agreement, one either side of that root. The suggestion keeps a long
+// face a sliver (suggest_tolerance.cpp: a long sliver's reading keeps the tolerance below
+// it), so where t lies above such a root, the suggestion may read the face as a sliver
+// while t reads it as a small face: both remove it. That and nothing else may differ —
+// never a compact face read as a sliver, never a long one read as a small face at s.
+bool only_long_slivers_read_apart(const Body& b, double s, double t, const std::set<std::string>& at_s,
+                                  const std::set<std::string>& at_t) {
+  if (!(s < t)) return false;
+  std::set<std::string> only_s, only_t;
+  for (const std::string& k : at_s)
+    if (!at_t.count(k)) only_s.insert(k);
+  for (const std::string& k : at_t)
+    if (!at_s.count(k)) only_t.insert(k);
+  if (only_s.size() != only_t.size()) return false;
+  const std::string sliver = "sliver_face ", small = "small_face ";
+  for (const std::string& k : only_s) {
+    if (k.rfind(sliver, 0) != 0 || !only_t.count(small + k.substr(sliver.size()))) return false;
+    // Long: its area's square root at least 4 times its width.
+    for (const Problem& p : detect(b, geo::Tolerances::for_model(s, model_size(b))).problems)
+      if (key(p) == k) {
+        const FaceH f = p.first<FaceH>();
+        auto m = face_area_and_bounds(b, f, 1e-4 * model_size(b));
+        if (!m || !(std::sqrt(m->area) >= 4 * p.measure)) return false;
+      }
+  }
+  return true;
+}
+
 // The zoo: one to three defects of the types a tolerance decides (not gaps: border
 // cycles are found at any tolerance) injected into a solid of any size, at a tolerance t
 // between 0.2% and 3% of it. The oracle is detect itself, not sizes: stepping the
@@ -142,7 +172,8 @@ RC_GTEST_PROP(SuggestToleranceProperty, ZooModelsLandWhereDetectAgreesWithTheirT
            << describe(s) << "\n";
   for (const zoo::KnownDefect& d : defects) RC_LOG() << "defect " << problem_name(d.type) << " " << d.size << "\n";
   RC_ASSERT(s.usable());
-  RC_ASSERT(problem_set(b, s.tolerance) == at_t);
+  const std::set<std::string> at_s = problem_set(b, s.tolerance);
+  if (at_s != at_t) RC_ASSERT(only_long_slivers_read_apart(b, s.tolerance, t, at_s, at_t));
 }
 
 TEST(SuggestTolerance, CleanModelsSuggestNothingSpurious) {
