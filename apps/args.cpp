@@ -73,15 +73,26 @@ std::optional<long long> Args::integer(const std::string& name, long long fallba
   return x;
 }
 
-std::optional<std::string> Args::bad_output(const std::vector<std::string>& options) const {
+std::optional<std::string> Args::bad_output(const std::vector<std::string>& options, const std::string& input) const {
+  namespace fs = std::filesystem;
+  // The same file: one path, or two names of one existing file.
+  auto same = [](const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    if (a.lexically_normal() == b.lexically_normal()) return true;
+    return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
+  };
+  std::vector<std::pair<std::string, fs::path>> seen;
   for (const std::string& option : options) {
     if (!has(option)) continue;
-    const std::filesystem::path p(*value(option));
-    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    const fs::path p(*value(option));
+    const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
     std::error_code ec;
-    if (p.empty() || !p.has_filename() || !std::filesystem::is_directory(folder, ec) ||
-        std::filesystem::is_directory(p, ec))
+    if (p.empty() || !p.has_filename() || !fs::is_directory(folder, ec) || fs::is_directory(p, ec))
       return option + " '" + p.string() + "' is not a file name in an existing folder";
+    if (!input.empty() && same(p, input)) return option + " '" + p.string() + "' would overwrite the input file";
+    for (const auto& [other, q] : seen)
+      if (same(p, q)) return option + " and " + other + " name the same file '" + p.string() + "'";
+    seen.push_back({option, p});
   }
   return std::nullopt;
 }

@@ -27,10 +27,11 @@ class Args {
                                    std::string* error) const;
 
   // Of the given output options, the first whose value is not a file name in an existing
-  // folder (empty, ends in '/', names a folder, or its folder is missing), with the reason;
+  // folder (empty, ends in '/', names a folder, or its folder is missing), names the
+  // input file `input`, or names the same file as another of them — with the reason;
   // nullopt when all are fine. Commands with several outputs check them all before writing
   // any: one found bad after another was written would leave that one behind with exit 2.
-  std::optional<std::string> bad_output(const std::vector<std::string>& options) const;
+  std::optional<std::string> bad_output(const std::vector<std::string>& options, const std::string& input) const;
 
  private:
   std::vector<std::string> positional_;

@@ -77,7 +77,7 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     err << "kintsugi beautify: " << (error.empty() ? "--tol must be a positive number" : error) << "\n";
     return kExitBadInput;
   }
-  if (auto bad = args.bad_output({"-o", "--report", "--html", "--png"})) {
+  if (auto bad = args.bad_output({"-o", "--report", "--html", "--png"}, args.positional()[0])) {
     err << "kintsugi beautify: " << *bad << "\n";
     return kExitBadInput;
   }

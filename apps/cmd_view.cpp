@@ -51,7 +51,7 @@ int cmd_view(const std::vector<std::string>& argv, std::ostream& out, std::ostre
     err << "kintsugi view: " << (error.empty() ? "--chordal must be a positive number" : error) << "\n";
     return kExitBadInput;
   }
-  if (auto bad = args.bad_output({"-o", "--png"})) {
+  if (auto bad = args.bad_output({"-o", "--png"}, args.positional()[0])) {
     err << "kintsugi view: " << *bad << "\n";
     return kExitBadInput;
   }

@@ -171,6 +171,18 @@ rm -f "$dir/left.html"
 expect 2 "view with --png naming a folder" -- "$K" view "$dir/box.json" -o "$dir/left.html" --png "$dir/afolder"
 contains "is not a file name" "the folder given as --png is named"
 [ -e "$dir/left.html" ] && { fail=$((fail + 1)); echo "FAIL: view left its page behind for --png naming a folder"; } || pass=$((pass + 1))
+# (CI's fuzz_cli_args, 2026-12-03: --html naming the input left OUT behind with exit 2.)
+cp "$dir/box.json" "$dir/keepme.json"
+expect 2 "beautify with --html naming the input" -- "$K" beautify "$dir/keepme.json" -o "$dir/left.brep" --html "$dir/keepme.json"
+contains "would overwrite the input" "the --html naming the input is said"
+[ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for --html naming the input"; } || pass=$((pass + 1))
+cmp -s "$dir/box.json" "$dir/keepme.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: the input was changed"; }
+expect 2 "beautify with -o and --report naming one file" -- "$K" beautify "$dir/box.json" -o "$dir/left.json" --report "$dir/./left.json"
+contains "name the same file" "two outputs naming one file are said"
+[ -e "$dir/left.json" ] && { fail=$((fail + 1)); echo "FAIL: beautify wrote OUT for two outputs naming one file"; } || pass=$((pass + 1))
+expect 2 "view with -o naming the input" -- "$K" view "$dir/keepme.json" -o "$dir/keepme.json"
+contains "would overwrite the input" "view's -o naming the input is said"
+cmp -s "$dir/box.json" "$dir/keepme.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: view changed its input"; }
 expect 2 "beautify with --report in a missing folder" -- "$K" beautify "$dir/box.json" -o "$dir/left.brep" --report "$dir/no/such/r.json"
 [ -e "$dir/left.brep" ] && { fail=$((fail + 1)); echo "FAIL: beautify left OUT behind for a bad --report"; } || pass=$((pass + 1))
 
