@@ -82,10 +82,6 @@ int cmd_beautify(const std::vector<std::string>& argv, std::ostream& out, std::o
     return kExitBadInput;
   }
   const std::string in = args.positional()[0], out_path = *args.value("-o");
-  if (args.has("--report") && *args.value("--report") == in) {
-    err << "kintsugi beautify: the report would overwrite the input\n";
-    return kExitBadInput;
-  }
   const bool page = args.has("--html") || args.has("--png");
   std::string note;
   nlohmann::json j;
