@@ -117,8 +117,10 @@ void DetectContext::measure_ahead(int threads) {
   std::vector<EdgeH> edges;
   for (EdgeH e : scope.edges)
     if (!geo::is_freeform(b.curve(e))) edges.push_back(e);
-  if (edges.size() >= kMinElements)
-    in_blocks(edges.size(), threads, [&](std::size_t i) { length_dense_[edges[i].idx()] = kintsugi::edge_length(b, edges[i]); });
+  // Every analytic edge's length first (the faces' measures below read them, and none is
+  // written while those threads run).
+  in_blocks(edges.size(), edges.size() >= kMinElements ? threads : 1,
+            [&](std::size_t i) { length_dense_[edges[i].idx()] = kintsugi::edge_length(b, edges[i]); });
   std::vector<FaceH> faces;
   for (FaceH f : scope.faces) {
     bool analytic = !geo::is_freeform(b.surface(f));
@@ -127,10 +129,6 @@ void DetectContext::measure_ahead(int threads) {
     if (analytic) faces.push_back(f);
   }
   if (faces.size() < kMinElements) return;
-  // The faces' measures read edge lengths: all of theirs are in length_dense_ now (none
-  // is written while the threads run).
-  if (edges.size() < kMinElements)
-    for (EdgeH e : edges) length_dense_[e.idx()] = kintsugi::edge_length(b, e);
   in_blocks(faces.size(), threads, [&](std::size_t i) {
     face_dense_[faces[i].idx()] = measure(faces[i]);
     face_done_[faces[i].idx()] = 1;
