@@ -1,7 +1,8 @@
 // The native JSON reader on arbitrary bytes: it must refuse or accept without crashing,
-// hanging, or undefined behaviour; and whatever it accepts must survive write → read as
-// an equal body, written identically the second time. A violation aborts (the fuzzer
-// reports it).
+// hanging, or undefined behaviour; its two parsers (simdjson first, nlohmann's alone) must
+// give the same verdict, message and body; and whatever it accepts must survive
+// write → read as an equal body, written identically the second time. A violation aborts
+// (the fuzzer reports it).
 #include "fuzz/die.h"
 #include "io/native_json.h"
 
@@ -15,12 +16,21 @@ using namespace kintsugi;
 using fuzz::die;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::string error;
-  auto doc = io::read_native(std::string_view(reinterpret_cast<const char*>(data), size), &error);
+  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string error, reference_error;
+  auto doc = io::read_native(input, &error);
+  auto reference = io::read_native(input, &reference_error, io::NativeParser::kReferenceOnly);
+  if (bool(doc) != bool(reference))
+    die(doc ? "simdjson accepted what the reference refused: " + reference_error
+            : "simdjson refused what the reference accepted: " + error);
   if (!doc) {
     if (error.empty()) die("refused without a message");
+    if (error != reference_error) die("the parsers word a refusal differently:\n" + error + "\n" + reference_error);
     return 0;
   }
+  std::string differs;
+  if (!reference->body.equals(doc->body, &differs)) die("the parsers read different bodies: " + differs);
+  if (reference->meta != doc->meta || reference->units != doc->units) die("the parsers read different meta or units");
   const std::string text = io::write_native(doc->body, doc->meta, doc->units);
   auto again = io::read_native(text, &error);
   if (!again) die("refused its own output: " + error + "\n" + text);

@@ -9,7 +9,9 @@
 //   "/edges/3/he/1/next: refers to half-edge 99, which does not exist".
 // Problems with the document as a whole (too large, empty) have no pointer prefix.
 // It never crashes on input, never recurses deeper than a fixed nesting limit, and
-// allocates in proportion to the input, which is itself capped at 1 GiB.
+// allocates in proportion to the input, which is itself capped at 1 GiB: the text, the
+// parser's index of it (about the text's size again), one element at a time as a small
+// tree, and the body it describes.
 #pragma once
 
 #include "kernel/body.h"
@@ -36,9 +38,16 @@ struct NativeDocument {
   std::string units = "mm";
 };
 
+// Which parser reads the text. kSimdjsonFirst: simdjson, several times faster, falling
+// back on nlohmann's for anything out of the ordinary (a syntax error, a duplicate key, deep
+// nesting), so a refusal is worded the same either way (io/native_json_parse.h).
+// kReferenceOnly: nlohmann's alone, the reference the tests and the fuzzer compare with.
+enum class NativeParser { kSimdjsonFirst, kReferenceOnly };
+
 // Parses text; on failure returns nullopt and sets *error (if given) to a message that
 // starts with the JSON pointer of the offending place.
-std::optional<NativeDocument> read_native(std::string_view text, std::string* error);
+std::optional<NativeDocument> read_native(std::string_view text, std::string* error,
+                                          NativeParser parser = NativeParser::kSimdjsonFirst);
 
 // The document for `b` (live elements only), streamed from the body without building a
 // JSON document (io/native_json_writer.cpp). Strings in `meta` that are not UTF-8 are
@@ -59,9 +68,10 @@ bool write_native_to(const Body& b, const nlohmann::json& meta, const std::strin
 bool write_native_file(const std::string& path, const Body& b, const nlohmann::json& meta, const std::string& units,
                        std::string* error, const std::string& must_not_overwrite = "");
 
-// Reads a whole file and parses it. Refuses files over kMaxNativeBytes and paths that
-// cannot be read; every message starts with the path ("model.json: /faces/2: ...").
-std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error);
+// Reads a whole file into memory and parses it. Refuses files over kMaxNativeBytes and
+// paths that cannot be read; every message starts with the path ("model.json: /faces/2: ...").
+std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error,
+                                               NativeParser parser = NativeParser::kSimdjsonFirst);
 
 // Writes `contents` to `path` so that `path` holds either its old contents or all of the
 // new ones, never a part: writes a temporary file in the same directory, fsyncs it, and

@@ -3,13 +3,18 @@
 // The writer is io/native_json_writer.cpp, atomic file writes io/atomic_file.cpp.
 #include "io/native_json.h"
 
+#include "io/json_tree.h"
+#include "io/native_json_parse.h"
+
 #include "invariants/assemble.h"
 #include "geometry/freeform.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -43,8 +48,52 @@ std::string escape_token(std::string_view key) {
   }
   return out;
 }
-std::string at(const std::string& ptr, std::string_view key) { return ptr + "/" + escape_token(key); }
-std::string at(const std::string& ptr, std::size_t index) { return ptr + "/" + std::to_string(index); }
+std::string spell(const std::string& ptr, std::string_view key) { return ptr + "/" + escape_token(key); }
+std::string spell(const std::string& ptr, std::size_t index) { return ptr + "/" + std::to_string(index); }
+
+// A JSON pointer spelled only when asked: a million-element document has tens of millions
+// of places, and only a refused one is ever named. A Ptr refers to its parent, so it
+// lives no longer than the full expression or the scope of the Ptr it was made from.
+class Ptr {
+ public:
+  Ptr(const char* root) : root_(root) {}  // NOLINT: a literal pointer ("/format") reads as one
+  explicit Ptr(std::string_view root) : root_(root) {}
+  Ptr(const Ptr& parent, std::string_view key) : parent_(&parent), key_(key), step_(kKey) {}
+  Ptr(const Ptr& parent, std::size_t index) : parent_(&parent), index_(index), step_(kIndex) {}
+  // A root with one step, which needs no parent to outlive it: at("/vertices", 3).
+  template <class Step>
+  static Ptr root(const char* root, Step step) {
+    Ptr r(root);
+    r.set(step);
+    return r;
+  }
+
+  std::string str() const {
+    std::string p = parent_ ? parent_->str() : std::string(root_);
+    if (step_ == kKey) return spell(p, key_);
+    if (step_ == kIndex) return spell(p, index_);
+    return p;
+  }
+
+ private:
+  void set(std::string_view key) {
+    key_ = key;
+    step_ = kKey;
+  }
+  void set(std::size_t index) {
+    index_ = index;
+    step_ = kIndex;
+  }
+  enum Step { kNone, kKey, kIndex };
+  const Ptr* parent_ = nullptr;
+  std::string_view root_, key_;
+  std::size_t index_ = 0;
+  Step step_ = kNone;
+};
+Ptr at(const char* root, std::string_view key) { return Ptr::root(root, key); }
+Ptr at(const char* root, std::size_t index) { return Ptr::root(root, index); }
+Ptr at(const Ptr& ptr, std::string_view key) { return Ptr(ptr, key); }
+Ptr at(const Ptr& ptr, std::size_t index) { return Ptr(ptr, index); }
 
 // "<pointer>: <message>", or the message alone for the whole document.
 std::string located(const std::string& ptr, const std::string& message) {
@@ -55,75 +104,54 @@ std::string located(const std::string& ptr, const std::string& message) {
 std::string number_text(double d) { return json(d).dump(); }
 
 // What a value is, for "expected X, found Y" messages: short values verbatim.
-std::string describe_value(const json& j) {
-  switch (j.type()) {
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: {
-      const auto& s = j.get_ref<const std::string&>();
-      if (s.size() > 40) return "a string";
-      return "the string " + j.dump(-1, ' ', false, json::error_handler_t::replace);
-    }
-    default: return j.dump();
-  }
+std::string describe_value(JsonView j) {
+  if (j.is_object()) return "an object";
+  if (j.is_array()) return "an array";
+  if (j.is_string()) return j.as_string().size() > 40 ? "a string" : "the string " + j.dump();
+  return j.dump();
 }
 
-// ---- bounded parsing ----------------------------------------------------------------
+// ---- the reference parser ------------------------------------------------------------
 //
-// nlohmann's parser is iterative, but the document it builds is destroyed and copied
-// recursively, and a 100 000-deep `[[[[...` would overflow the stack there. So we build
-// the document ourselves from SAX events, refusing nesting beyond kMaxNativeDepth before
-// it exists. The same events let us name the place of a syntax error, refuse numbers that
+// nlohmann's SAX parser, building JsonTrees: what the reader falls back on whenever
+// simdjson gives up (io/native_json_parse.h), and the parser the tests and the json_reader
+// fuzz target hold the fast one to. Its events let us refuse nesting beyond
+// kMaxNativeDepth before it exists, name the place of a syntax error, refuse numbers that
 // overflow a double (which the lexer turns into ±inf), and refuse duplicate keys (which
 // nlohmann would silently resolve to the last one).
 //
-// The element arrays of the top-level object ("vertices", ... "shells": by far the bulk
-// of a document) are not built: each of their elements is built alone, handed to the
-// ElementSink as soon as it is complete, and dropped, so the document in memory is the
-// top level, `meta`, and one element. (A whole document as nlohmann values takes about
-// ten times the bytes of its text.)
-
-// The element arrays, in the order the reader checks them.
-enum ElementKind { kVertices, kEdges, kLoops, kFaces, kShells, kElementKinds };
-const char* const kElementKeys[kElementKinds] = {"vertices", "edges", "loops", "faces", "shells"};
-
-class ElementSink {
- public:
-  virtual ~ElementSink() = default;
-  // Element `index` of the top-level array `kind`, complete.
-  virtual void element(ElementKind kind, std::size_t index, const json& value) = 0;
-};
+// The element arrays of the top-level object are not built: each of their elements is
+// built alone in a tree of its own, handed to the ElementSink as soon as it is complete,
+// and dropped, so the document in memory is the top level, `meta`, and one element.
 
 class BoundedDocumentBuilder {
  public:
-  json root;
   std::string error;
 
   explicit BoundedDocumentBuilder(ElementSink* sink) : sink_(sink) {}
 
-  bool null() { return add(json(nullptr)); }
-  bool boolean(bool v) { return add(json(v)); }
-  bool number_integer(json::number_integer_t v) { return add(json(v)); }
-  bool number_unsigned(json::number_unsigned_t v) { return add(json(v)); }
+  // The top-level value, once parsed.
+  JsonView root() const { return root_tree_.empty() ? JsonView() : JsonView(&root_tree_, 0); }
+
+  bool null() { return add([](JsonTreeBuilder& b) { b.null(); }); }
+  bool boolean(bool v) { return add([&](JsonTreeBuilder& b) { b.boolean(v); }); }
+  bool number_integer(json::number_integer_t v) { return add([&](JsonTreeBuilder& b) { b.integer(v); }); }
+  bool number_unsigned(json::number_unsigned_t v) { return add([&](JsonTreeBuilder& b) { b.unsigned_integer(v); }); }
   bool number_float(json::number_float_t v, const json::string_t& text) {
     if (!std::isfinite(v)) return fail("number " + text + " is out of the range of a double");
-    return add(json(v));
+    return add([&](JsonTreeBuilder& b) { b.floating(v); });
   }
-  bool string(json::string_t& v) { return add(json(std::move(v))); }
+  bool string(json::string_t& v) { return add([&](JsonTreeBuilder& b) { b.string(v); }); }
   bool binary(json::binary_t&) { return fail("binary values are not part of JSON"); }
-  bool start_object(std::size_t) { return open(json::object()); }
-  bool start_array(std::size_t) { return open(json::array()); }
+  bool start_object(std::size_t) { return open(false); }
+  bool start_array(std::size_t) { return open(true); }
   bool end_object() { return close(); }
   bool end_array() { return close(); }
   bool key(json::string_t& k) {
     Level& top = stack_.back();
-    if (top.node->contains(k)) {
-      top.key = std::move(k);
-      top.has_key = true;
-      return fail("key appears twice in the same object");
-    }
-    top.key = std::move(k);
+    top.key = k;
     top.has_key = true;
+    if (!builder(top).key(k)) return fail("key appears twice in the same object");
     return true;
   }
   bool parse_error(std::size_t, const std::string&, const json::exception& ex) {
@@ -136,18 +164,22 @@ class BoundedDocumentBuilder {
 
  private:
   struct Level {
-    json* node;
+    bool array;
     std::string key;         // objects: the key whose value comes next
     bool has_key = false;
     std::string open_child;  // the token of the child container being built, if any
-    std::size_t count = 0;   // arrays: the children so far (a streamed array keeps none)
+    std::size_t count = 0;   // arrays: the children so far
     int streams = -1;        // an element array of the top level: its ElementKind
     int delivers = -1;       // an element of such an array: its kind, handed over when closed
     std::size_t index = 0;   // ... and its index
+    bool in_element = false; // built in the element's tree, not the top level's
   };
   std::vector<Level> stack_;
   ElementSink* sink_;
-  json element_;  // the element of an element array being built
+  JsonTree root_tree_, element_tree_;
+  JsonTreeBuilder root_{&root_tree_}, element_{&element_tree_};
+
+  JsonTreeBuilder& builder(const Level& l) { return l.in_element ? element_ : root_; }
 
   // Pointer of the value being parsed now.
   std::string here() const {
@@ -156,7 +188,7 @@ class BoundedDocumentBuilder {
       const Level& l = stack_[i];
       if (i + 1 < stack_.size())
         p += "/" + l.open_child;
-      else if (l.node->is_array())
+      else if (l.array)
         p += "/" + std::to_string(l.count);
       else if (l.has_key)
         p += "/" + escape_token(l.key);
@@ -167,64 +199,68 @@ class BoundedDocumentBuilder {
     error = located(here(), message);
     return false;
   }
-  // Adds a value where the parser is; returns where it went (for containers) and which
-  // element array it is the element of (-1: none) with its index.
-  json* insert(json v, int* delivers, std::size_t* index) {
+  // Which tree the next value goes to, and whether it is an element of an element array
+  // (*delivers: its kind, or -1) with its index; starts the element's tree if so.
+  JsonTreeBuilder& place(int* delivers, std::size_t* index, bool* in_element) {
     *delivers = -1;
+    *in_element = false;
     if (stack_.empty()) {
-      root = std::move(v);
-      return &root;
+      root_.reset();
+      return root_;
     }
     Level& top = stack_.back();
-    if (top.node->is_array()) {
-      const std::size_t i = top.count++;
-      if (top.streams >= 0) {
-        *delivers = top.streams;
-        *index = i;
-        element_ = std::move(v);
-        return &element_;
-      }
-      top.node->push_back(std::move(v));
-      return &top.node->back();
+    const std::size_t i = top.count;
+    if (top.array)
+      ++top.count;
+    else
+      top.has_key = false;
+    if (top.streams >= 0) {
+      *delivers = top.streams;
+      *index = i;
+      *in_element = true;
+      element_.reset();
+      return element_;
     }
-    top.has_key = false;
-    json& slot = (*top.node)[top.key];
-    slot = std::move(v);
-    return &slot;
+    *in_element = top.in_element;
+    return builder(top);
   }
-  bool add(json v) {
+  template <class Value>
+  bool add(Value value) {
     int delivers;
     std::size_t index;
-    insert(std::move(v), &delivers, &index);
+    bool in_element;
+    value(place(&delivers, &index, &in_element));
     if (delivers >= 0) deliver(delivers, index);
     return true;
   }
-  void deliver(int kind, std::size_t index) {
-    sink_->element(ElementKind(kind), index, element_);
-    element_ = json();
-  }
-  bool open(json container) {
+  void deliver(int kind, std::size_t index) { sink_->element(ElementKind(kind), index, JsonView(&element_tree_, 0)); }
+  bool open(bool array) {
     if (stack_.size() >= kMaxNativeDepth)
       return fail("nesting is deeper than " + std::to_string(kMaxNativeDepth) + " levels");
     int streams = -1;
     if (!stack_.empty()) {
       Level& parent = stack_.back();
-      parent.open_child = parent.node->is_array() ? std::to_string(parent.count) : escape_token(parent.key);
-      // An array that is a member of the top-level object under an element key.
-      if (sink_ && stack_.size() == 1 && parent.node->is_object() && container.is_array())
+      parent.open_child = parent.array ? std::to_string(parent.count) : escape_token(parent.key);
+      // An array that is a member of the top-level object under an element key: it stays
+      // empty in the top level's tree, its elements go to the sink.
+      if (sink_ && stack_.size() == 1 && !parent.array && array)
         for (int k = 0; k < kElementKinds; ++k)
           if (parent.key == kElementKeys[k]) streams = k;
     }
-    Level level{nullptr, {}, false, {}, 0, streams, -1, 0};
-    level.node = insert(std::move(container), &level.delivers, &level.index);
-    // Children are complete before their next sibling is added, so `node` stays valid
-    // while it is on the stack.
+    Level level{array, {}, false, {}, 0, streams, -1, 0, false};
+    JsonTreeBuilder& b = place(&level.delivers, &level.index, &level.in_element);
+    if (array)
+      b.open_array();
+    else
+      b.open_object();
     stack_.push_back(std::move(level));
     return true;
   }
   bool close() {
-    const int delivers = stack_.back().delivers;
-    const std::size_t index = stack_.back().index;
+    const Level& top = stack_.back();
+    builder(top).close();
+    const int delivers = top.delivers;
+    const std::size_t index = top.index;
     stack_.pop_back();
     if (delivers >= 0) deliver(delivers, index);
     return true;
@@ -262,7 +298,7 @@ class DocumentReader final : public ElementSink {
  public:
   explicit DocumentReader(std::string* error) : error_(error) {}
 
-  void element(ElementKind kind, std::size_t i, const json& e) override {
+  void element(ElementKind kind, std::size_t i, JsonView e) override {
     Pending& k = pending_[kind];
     k.count = i + 1;
     if (k.failed) return;
@@ -282,8 +318,26 @@ class DocumentReader final : public ElementSink {
     }
   }
 
+  void expect(ElementKind kind, std::size_t count, std::size_t bytes) override {
+    // Reserving the descriptions saves copying them as they grow (an EdgeDesc is large).
+    // Not past what the document's bytes can hold of valid elements: `[1,1,1,...]` must
+    // not reserve gigabytes. The shortest valid elements are {"id":0,"point":[0,0,0]},
+    // {"id":0,"he":[{"origin":0,"next":0,"loop":0},{...}]}, {"id":0,"lone":0},
+    // {"id":0,"shell":0,"loops":[0],"same_sense":true} and {"id":0,"genus":0}.
+    static constexpr std::size_t kShortest[kElementKinds] = {24, 75, 17, 45, 18};
+    count = std::min(count, bytes / kShortest[kind]);
+    switch (kind) {
+      case kVertices: d_.vertices.reserve(count); break;
+      case kEdges: d_.edges.reserve(count); break;
+      case kLoops: d_.loops.reserve(count); break;
+      case kFaces: d_.faces.reserve(count); break;
+      case kShells: d_.shells.reserve(count); break;
+      case kElementKinds: break;
+    }
+  }
+
   // The document without its elements (the element arrays are there, empty).
-  std::optional<NativeDocument> finish(const json& doc) {
+  std::optional<NativeDocument> finish(JsonView doc) {
     NativeDocument out;
     if (!top_level(doc, &out) || !settle(kVertices, vertex_ids_, d_.vertices) || !settle(kEdges, edge_ids_, d_.edges) ||
         !settle(kLoops, loop_ids_, d_.loops) || !settle(kFaces, face_ids_, d_.faces) ||
@@ -318,6 +372,8 @@ class DocumentReader final : public ElementSink {
     message_ = located(ptr, message);
     return false;
   }
+  bool fail(const Ptr& ptr, const std::string& message) { return fail(ptr.str(), message); }
+  bool fail(const char* ptr, const std::string& message) { return fail(std::string(ptr), message); }
   std::optional<NativeDocument> refuse() {
     if (error_) *error_ = std::move(message_);
     return std::nullopt;
@@ -342,14 +398,14 @@ class DocumentReader final : public ElementSink {
   // -- values --
 
   // Checks `j` is an object whose keys are all in `allowed`; names every stranger.
-  bool object_with_keys(const json& j, const std::string& ptr, std::initializer_list<std::string_view> allowed,
+  bool object_with_keys(JsonView j, const Ptr& ptr, std::initializer_list<std::string_view> allowed,
                         const std::string& what) {
     if (!j.is_object()) return fail(ptr, "expected " + what + " (an object), found " + describe_value(j));
     std::vector<std::string> unknown;
-    for (const auto& item : j.items()) {
+    for (JsonView item = j.first(); item; item = item.next()) {
       bool known = false;
       for (std::string_view a : allowed) known = known || item.key() == a;
-      if (!known) unknown.push_back(item.key());
+      if (!known) unknown.emplace_back(item.key());
     }
     if (unknown.empty()) return true;
     std::string names, expected;
@@ -359,36 +415,33 @@ class DocumentReader final : public ElementSink {
                 std::string(unknown.size() == 1 ? "unknown key " : "unknown keys ") + names + " in " + what +
                     " (it has " + expected + ")");
   }
-  // The member `key` of object `obj`, or nullptr after reporting it missing.
-  const json* required(const json& obj, const std::string& ptr, const char* key) {
-    auto it = obj.find(key);
-    if (it == obj.end()) {
-      fail(at(ptr, key), "is missing");
-      return nullptr;
-    }
-    return &*it;
+  // The member `key` of object `obj`, or an absent view after reporting it missing.
+  JsonView required(JsonView obj, const Ptr& ptr, const char* key) {
+    JsonView v = obj.find(key);
+    if (!v) fail(at(ptr, key), "is missing");
+    return v;
   }
-  // The member `key`, or nullptr when it is absent or null (an optional reference).
-  static const json* optional_member(const json& obj, const char* key) {
-    auto it = obj.find(key);
-    return it == obj.end() || it->is_null() ? nullptr : &*it;
+  // The member `key`, or an absent view when it is absent or null (an optional reference).
+  static JsonView optional_member(JsonView obj, const char* key) {
+    JsonView v = obj.find(key);
+    return v && !v.is_null() ? v : JsonView();
   }
 
-  bool number(const json& j, const std::string& ptr, double* out) {
+  bool number(JsonView j, const Ptr& ptr, double* out) {
     if (!j.is_number()) return fail(ptr, "expected a number, found " + describe_value(j));
-    *out = j.get<double>();
+    *out = j.as_double();
     // The parser refuses overflow; this guards documents built any other way.
     if (!std::isfinite(*out)) return fail(ptr, "expected a finite number");
     return true;
   }
-  bool positive(const json& j, const std::string& ptr, double* out) {
+  bool positive(JsonView j, const Ptr& ptr, double* out) {
     if (!number(j, ptr, out)) return false;
     if (!(*out > 0)) return fail(ptr, "must be positive, found " + number_text(*out));
     return true;
   }
-  bool integer(const json& j, const std::string& ptr, std::uint64_t max, std::uint64_t* out) {
+  bool integer(JsonView j, const Ptr& ptr, std::uint64_t max, std::uint64_t* out) {
     if (j.is_number_unsigned()) {
-      *out = j.get<std::uint64_t>();
+      *out = j.as_unsigned();
     } else if (j.is_number_integer()) {
       return fail(ptr, "expected a non-negative integer, found " + j.dump());
     } else if (j.is_number_float()) {
@@ -399,13 +452,13 @@ class DocumentReader final : public ElementSink {
     if (*out > max) return fail(ptr, std::to_string(*out) + " is out of range (at most " + std::to_string(max) + ")");
     return true;
   }
-  bool id(const json& j, const std::string& ptr, std::uint64_t max, std::uint32_t* out) {
+  bool id(JsonView j, const Ptr& ptr, std::uint64_t max, std::uint32_t* out) {
     std::uint64_t v;
     if (!integer(j, ptr, max, &v)) return false;
     *out = std::uint32_t(v);
     return true;
   }
-  bool vec3(const json& j, const std::string& ptr, geo::Vec3* out) {
+  bool vec3(JsonView j, const Ptr& ptr, geo::Vec3* out) {
     if (!j.is_array() || j.size() != 3)
       return fail(ptr, "expected [x, y, z] (an array of 3 numbers), found " +
                            (j.is_array() ? "an array of " + std::to_string(j.size()) : describe_value(j)));
@@ -413,16 +466,16 @@ class DocumentReader final : public ElementSink {
       if (!number(j[i], at(ptr, i), &(*out)[Eigen::Index(i)])) return false;
     return true;
   }
-  bool unit_vec3(const json& j, const std::string& ptr, geo::Vec3* out) {
+  bool unit_vec3(JsonView j, const Ptr& ptr, geo::Vec3* out) {
     if (!vec3(j, ptr, out)) return false;
     double length = out->norm();
     if (!(std::abs(length - 1.0) <= kUnitTolerance))
       return fail(ptr, "is not a unit vector (its length is " + number_text(length) + ")");
     return true;
   }
-  bool frame(const json& j, const std::string& ptr, geo::Frame* out) {
+  bool frame(JsonView j, const Ptr& ptr, geo::Frame* out) {
     if (!object_with_keys(j, ptr, {"origin", "x", "z"}, "a frame")) return false;
-    const json *o = nullptr, *x = nullptr, *z = nullptr;
+    JsonView o, x, z;
     if (!(o = required(j, ptr, "origin")) || !(x = required(j, ptr, "x")) || !(z = required(j, ptr, "z"))) return false;
     if (!vec3(*o, at(ptr, "origin"), &out->origin) || !unit_vec3(*x, at(ptr, "x"), &out->x) ||
         !unit_vec3(*z, at(ptr, "z"), &out->z))
@@ -434,74 +487,77 @@ class DocumentReader final : public ElementSink {
   }
   // Reads the number member `key` of `obj`, checked by `check` (one of the above).
   template <class Check>
-  bool field(const json& obj, const std::string& ptr, const char* key, double* out, Check check) {
-    const json* v = required(obj, ptr, key);
+  bool field(JsonView obj, const Ptr& ptr, const char* key, double* out, Check check) {
+    JsonView v = required(obj, ptr, key);
     return v && (this->*check)(*v, at(ptr, key), out);
   }
   // The "type" member of a geometry object.
-  bool geometry_type(const json& j, const std::string& ptr, const char* what, std::string* type) {
+  bool geometry_type(JsonView j, const Ptr& ptr, const char* what, std::string* type) {
     if (!j.is_object()) return fail(ptr, std::string("expected ") + what + " (an object or null), found " + describe_value(j));
-    const json* t = required(j, ptr, "type");
+    JsonView t = required(j, ptr, "type");
     if (!t) return false;
     if (!t->is_string()) return fail(at(ptr, "type"), "expected a string, found " + describe_value(*t));
-    *type = t->get<std::string>();
+    *type = std::string(t->as_string());
     return true;
   }
 
   // -- free-form geometry (spec/file-format.md, "Free-form geometry") --
 
-  bool count_field(const json& obj, const std::string& ptr, const char* key, int lo, int* out) {
-    const json* v = required(obj, ptr, key);
+  bool count_field(JsonView obj, const Ptr& ptr, const char* key, int lo, int* out) {
+    JsonView v = required(obj, ptr, key);
     std::uint64_t n = 0;
     if (!v || !integer(*v, at(ptr, key), 1u << 24, &n)) return false;
     if (int(n) < lo) return fail(at(ptr, key), "must be at least " + std::to_string(lo) + ", found " + std::to_string(n));
     *out = int(n);
     return true;
   }
-  bool flag_field(const json& obj, const std::string& ptr, const char* key, bool* out) {
-    const json* v = required(obj, ptr, key);
+  bool flag_field(JsonView obj, const Ptr& ptr, const char* key, bool* out) {
+    JsonView v = required(obj, ptr, key);
     if (!v) return false;
     if (!v->is_boolean()) return fail(at(ptr, key), "expected true or false, found " + describe_value(*v));
-    *out = v->get<bool>();
+    *out = v->as_bool();
     return true;
   }
-  bool number_list(const json& obj, const std::string& ptr, const char* key, std::vector<double>* out) {
-    const json* v = required(obj, ptr, key);
+  bool number_list(JsonView obj, const Ptr& ptr, const char* key, std::vector<double>* out) {
+    JsonView v = required(obj, ptr, key);
     if (!v) return false;
-    const std::string p = at(ptr, key);
+    const Ptr p = at(ptr, key);
     if (!v->is_array()) return fail(p, "expected an array of numbers, found " + describe_value(*v));
     out->resize(v->size());
-    for (std::size_t i = 0; i < v->size(); ++i)
-      if (!number((*v)[i], at(p, i), &(*out)[i])) return false;
+    std::size_t i = 0;
+    for (JsonView x = v->first(); x; x = x.next(), ++i)
+      if (!number(x, at(p, i), &(*out)[i])) return false;
     return true;
   }
-  bool integer_list(const json& obj, const std::string& ptr, const char* key, std::vector<int>* out) {
-    const json* v = required(obj, ptr, key);
+  bool integer_list(JsonView obj, const Ptr& ptr, const char* key, std::vector<int>* out) {
+    JsonView v = required(obj, ptr, key);
     if (!v) return false;
-    const std::string p = at(ptr, key);
+    const Ptr p = at(ptr, key);
     if (!v->is_array()) return fail(p, "expected an array of integers, found " + describe_value(*v));
     out->resize(v->size());
-    for (std::size_t i = 0; i < v->size(); ++i) {
+    std::size_t i = 0;
+    for (JsonView x = v->first(); x; x = x.next(), ++i) {
       std::uint64_t n = 0;
-      if (!integer((*v)[i], at(p, i), 1u << 24, &n)) return false;
+      if (!integer(x, at(p, i), 1u << 24, &n)) return false;
       if (n == 0) return fail(at(p, i), "a multiplicity must be at least 1");
       (*out)[i] = int(n);
     }
     return true;
   }
-  bool point_list(const json& obj, const std::string& ptr, const char* key, std::vector<geo::Vec3>* out) {
-    const json* v = required(obj, ptr, key);
+  bool point_list(JsonView obj, const Ptr& ptr, const char* key, std::vector<geo::Vec3>* out) {
+    JsonView v = required(obj, ptr, key);
     if (!v) return false;
-    const std::string p = at(ptr, key);
+    const Ptr p = at(ptr, key);
     if (!v->is_array()) return fail(p, "expected an array of points, found " + describe_value(*v));
     out->resize(v->size());
-    for (std::size_t i = 0; i < v->size(); ++i)
-      if (!vec3((*v)[i], at(p, i), &(*out)[i])) return false;
+    std::size_t i = 0;
+    for (JsonView x = v->first(); x; x = x.next(), ++i)
+      if (!vec3(x, at(p, i), &(*out)[i])) return false;
     return true;
   }
   // Knots strictly increasing, multiplicities summing to what the degree and pole count
   // need (open: poles + degree + 1; periodic: poles, the last knot's counted once).
-  bool knot_vector(const std::string& ptr, const char* knots_key, const std::vector<double>& knots,
+  bool knot_vector(const Ptr& ptr, const char* knots_key, const std::vector<double>& knots,
                    const std::vector<int>& mults, int degree, std::size_t poles, bool periodic) {
     if (knots.size() < 2) return fail(at(ptr, knots_key), "expected at least 2 knots, found " + std::to_string(knots.size()));
     if (mults.size() != knots.size())
@@ -518,7 +574,7 @@ class DocumentReader final : public ElementSink {
                            std::to_string(degree) + " with " + std::to_string(poles) + " poles needs " + std::to_string(need));
     return true;
   }
-  bool weights_ok(const std::string& ptr, const std::vector<double>& w, std::size_t poles) {
+  bool weights_ok(const Ptr& ptr, const std::vector<double>& w, std::size_t poles) {
     if (w.empty()) return true;
     if (w.size() != poles)
       return fail(at(ptr, "weights"), "expected one weight per pole (" + std::to_string(poles) + "), found " + std::to_string(w.size()));
@@ -526,31 +582,31 @@ class DocumentReader final : public ElementSink {
       if (!(w[i] > 0)) return fail(at(at(ptr, "weights"), i), "weights must be positive");
     return true;
   }
-  bool freeform_available(const std::string& ptr) {
+  bool freeform_available(const Ptr& ptr) {
     if (std::string why = geo::freeform_unavailable(); !why.empty()) return fail(ptr, why);
     return true;
   }
-  bool bspline_curve(const json& j, const std::string& ptr, geo::BSplineCurve* c) {
+  bool bspline_curve(JsonView j, const Ptr& ptr, geo::BSplineCurve* c) {
     if (!object_with_keys(j, ptr, {"type", "degree", "poles", "weights", "knots", "multiplicities", "periodic"},
                           "a bspline_curve"))
       return false;
-    if (j.contains("type") && j["type"] != "bspline_curve") return fail(at(ptr, "type"), "expected \"bspline_curve\"");
+    if (JsonView t = j.find("type"); t && !t.is_string("bspline_curve")) return fail(at(ptr, "type"), "expected \"bspline_curve\"");
     if (!count_field(j, ptr, "degree", 1, &c->degree) || !point_list(j, ptr, "poles", &c->poles) ||
         !number_list(j, ptr, "knots", &c->knots) || !integer_list(j, ptr, "multiplicities", &c->multiplicities) ||
         !flag_field(j, ptr, "periodic", &c->periodic))
       return false;
-    if (j.contains("weights") && !number_list(j, ptr, "weights", &c->weights)) return false;
+    if (j.find("weights") && !number_list(j, ptr, "weights", &c->weights)) return false;
     if (c->poles.size() < 2) return fail(at(ptr, "poles"), "expected at least 2 poles");
     return weights_ok(ptr, c->weights, c->poles.size()) &&
            knot_vector(ptr, "knots", c->knots, c->multiplicities, c->degree, c->poles.size(), c->periodic);
   }
-  bool bspline_surface(const json& j, const std::string& ptr, geo::BSplineSurface* b) {
+  bool bspline_surface(JsonView j, const Ptr& ptr, geo::BSplineSurface* b) {
     if (!object_with_keys(j, ptr,
                           {"type", "u_degree", "v_degree", "u_count", "v_count", "poles", "weights", "u_knots", "v_knots",
                            "u_multiplicities", "v_multiplicities", "u_periodic", "v_periodic"},
                           "a bspline_surface"))
       return false;
-    if (j.contains("type") && j["type"] != "bspline_surface") return fail(at(ptr, "type"), "expected \"bspline_surface\"");
+    if (JsonView t = j.find("type"); t && !t.is_string("bspline_surface")) return fail(at(ptr, "type"), "expected \"bspline_surface\"");
     if (!count_field(j, ptr, "u_degree", 1, &b->u_degree) || !count_field(j, ptr, "v_degree", 1, &b->v_degree) ||
         !count_field(j, ptr, "u_count", 2, &b->u_count) || !count_field(j, ptr, "v_count", 2, &b->v_count) ||
         !point_list(j, ptr, "poles", &b->poles) || !number_list(j, ptr, "u_knots", &b->u_knots) ||
@@ -558,7 +614,7 @@ class DocumentReader final : public ElementSink {
         !integer_list(j, ptr, "v_multiplicities", &b->v_multiplicities) ||
         !flag_field(j, ptr, "u_periodic", &b->u_periodic) || !flag_field(j, ptr, "v_periodic", &b->v_periodic))
       return false;
-    if (j.contains("weights") && !number_list(j, ptr, "weights", &b->weights)) return false;
+    if (j.find("weights") && !number_list(j, ptr, "weights", &b->weights)) return false;
     const std::size_t n = std::size_t(b->u_count) * std::size_t(b->v_count);
     if (b->poles.size() != n)
       return fail(at(ptr, "poles"), "expected u_count x v_count = " + std::to_string(n) + " poles, found " + std::to_string(b->poles.size()));
@@ -567,18 +623,18 @@ class DocumentReader final : public ElementSink {
            knot_vector(ptr, "v_knots", b->v_knots, b->v_multiplicities, b->v_degree, std::size_t(b->v_count), b->v_periodic);
   }
   // The backend's own verdict on data that passed the structural checks.
-  bool freeform_valid(const std::string& ptr, const geo::Surface& s) {
+  bool freeform_valid(const Ptr& ptr, const geo::Surface& s) {
     std::string why = geo::require_freeform().surface_problem(s);
     return why.empty() || fail(ptr, why);
   }
-  bool freeform_valid(const std::string& ptr, const geo::Curve& c) {
+  bool freeform_valid(const Ptr& ptr, const geo::Curve& c) {
     std::string why = geo::require_freeform().curve_problem(c);
     return why.empty() || fail(ptr, why);
   }
 
   // -- geometry --
 
-  bool surface(const json* j, const std::string& ptr, geo::Surface* out) {
+  bool surface(JsonView j, const Ptr& ptr, geo::Surface* out) {
     if (!j || j->is_null()) {
       *out = std::monostate{};
       return true;
@@ -587,7 +643,7 @@ class DocumentReader final : public ElementSink {
     if (!geometry_type(*j, ptr, "a surface", &type)) return false;
     const std::string what = "a " + type + " surface";
     auto with_frame = [&](geo::Frame* f) {
-      const json* fr = required(*j, ptr, "frame");
+      JsonView fr = required(*j, ptr, "frame");
       return fr && frame(*fr, at(ptr, "frame"), f);
     };
     if (type == "plane") {
@@ -633,7 +689,7 @@ class DocumentReader final : public ElementSink {
       return freeform_valid(ptr, *out);
     } else if (type == "revolution_surface") {
       geo::RevolutionSurface r;
-      const json *basis = nullptr, *o = nullptr, *a = nullptr;
+      JsonView basis, o, a;
       if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "origin", "axis"}, what) ||
           !(basis = required(*j, ptr, "basis")) || !bspline_curve(*basis, at(ptr, "basis"), &r.basis) ||
           !(o = required(*j, ptr, "origin")) || !vec3(*o, at(ptr, "origin"), &r.origin) ||
@@ -643,7 +699,7 @@ class DocumentReader final : public ElementSink {
       return freeform_valid(ptr, *out);
     } else if (type == "extrusion_surface") {
       geo::ExtrusionSurface e;
-      const json *basis = nullptr, *d = nullptr;
+      JsonView basis, d;
       if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "direction"}, what) ||
           !(basis = required(*j, ptr, "basis")) || !bspline_curve(*basis, at(ptr, "basis"), &e.basis) ||
           !(d = required(*j, ptr, "direction")) || !unit_vec3(*d, at(ptr, "direction"), &e.direction))
@@ -652,7 +708,7 @@ class DocumentReader final : public ElementSink {
       return freeform_valid(ptr, *out);
     } else if (type == "offset_surface") {
       geo::OffsetSurface o;
-      const json* basis = nullptr;
+      JsonView basis;
       if (!freeform_available(ptr) || !object_with_keys(*j, ptr, {"type", "basis", "distance"}, what) ||
           !(basis = required(*j, ptr, "basis")) || !bspline_surface(*basis, at(ptr, "basis"), &o.basis) ||
           !field(*j, ptr, "distance", &o.distance, &DocumentReader::number))
@@ -667,7 +723,7 @@ class DocumentReader final : public ElementSink {
     return true;
   }
 
-  bool curve(const json* j, const std::string& ptr, geo::Curve* out) {
+  bool curve(JsonView j, const Ptr& ptr, geo::Curve* out) {
     if (!j || j->is_null()) {
       *out = std::monostate{};
       return true;
@@ -677,7 +733,7 @@ class DocumentReader final : public ElementSink {
     const std::string what = "a " + type + " curve";
     if (type == "line") {
       geo::Line c;
-      const json *o = nullptr, *d = nullptr;
+      JsonView o, d;
       if (!object_with_keys(*j, ptr, {"type", "origin", "direction"}, what) || !(o = required(*j, ptr, "origin")) ||
           !(d = required(*j, ptr, "direction")) || !vec3(*o, at(ptr, "origin"), &c.origin) ||
           !unit_vec3(*d, at(ptr, "direction"), &c.direction))
@@ -685,14 +741,14 @@ class DocumentReader final : public ElementSink {
       *out = c;
     } else if (type == "circle") {
       geo::Circle c;
-      const json *f = nullptr;
+      JsonView f;
       if (!object_with_keys(*j, ptr, {"type", "frame", "radius"}, what) || !(f = required(*j, ptr, "frame")) ||
           !frame(*f, at(ptr, "frame"), &c.frame) || !field(*j, ptr, "radius", &c.radius, &DocumentReader::positive))
         return false;
       *out = c;
     } else if (type == "ellipse") {
       geo::Ellipse c;
-      const json *f = nullptr;
+      JsonView f;
       if (!object_with_keys(*j, ptr, {"type", "frame", "major_radius", "minor_radius"}, what) ||
           !(f = required(*j, ptr, "frame")) || !frame(*f, at(ptr, "frame"), &c.frame) ||
           !field(*j, ptr, "major_radius", &c.major_radius, &DocumentReader::positive) ||
@@ -704,20 +760,21 @@ class DocumentReader final : public ElementSink {
       *out = c;
     } else if (type == "polyline") {
       geo::Polyline c;
-      const json *pts = nullptr;
+      JsonView pts;
       if (!object_with_keys(*j, ptr, {"type", "points", "chordal_error"}, what) ||
           !(pts = required(*j, ptr, "points")) ||
           !field(*j, ptr, "chordal_error", &c.chordal_error, &DocumentReader::number))
         return false;
       if (!(c.chordal_error >= 0))
         return fail(at(ptr, "chordal_error"), "must not be negative, found " + number_text(c.chordal_error));
-      const std::string pp = at(ptr, "points");
+      const Ptr pp = at(ptr, "points");
       if (!pts->is_array() || pts->size() < 2)
         return fail(pp, "expected an array of at least 2 points, found " +
                             (pts->is_array() ? "an array of " + std::to_string(pts->size()) : describe_value(*pts)));
       c.points.resize(pts->size());
-      for (std::size_t i = 0; i < pts->size(); ++i)
-        if (!vec3((*pts)[i], at(pp, i), &c.points[i])) return false;
+      std::size_t i = 0;
+      for (JsonView x = pts->first(); x; x = x.next(), ++i)
+        if (!vec3(x, at(pp, i), &c.points[i])) return false;
       *out = std::move(c);
     } else if (type == "bspline_curve") {
       geo::BSplineCurve b;
@@ -733,50 +790,50 @@ class DocumentReader final : public ElementSink {
 
   // -- document --
 
-  bool top_level(const json& doc, NativeDocument* out) {
+  bool top_level(JsonView doc, NativeDocument* out) {
     if (!object_with_keys(doc, "", {"format", "version", "units", "vertices", "edges", "loops", "faces", "shells", "meta"},
                           "a kintsugi-brep document"))
       return false;
-    const json *format = nullptr, *version = nullptr, *units = nullptr;
+    JsonView format, version, units;
     if (!(format = required(doc, "", "format"))) return false;
-    if (*format != "kintsugi-brep") return fail("/format", "expected \"kintsugi-brep\", found " + describe_value(*format));
+    if (!format->is_string("kintsugi-brep")) return fail("/format", "expected \"kintsugi-brep\", found " + describe_value(*format));
     if (!(version = required(doc, "", "version"))) return false;
     std::uint64_t v;
     if (!integer(*version, "/version", kMaxId, &v)) return false;
     if (v != 1) return fail("/version", "unsupported version " + std::to_string(v) + " (this reader reads version 1)");
     if (!(units = required(doc, "", "units"))) return false;
     bool known = false;
-    for (const char* u : kUnits) known = known || *units == u;
+    for (const char* u : kUnits) known = known || units->is_string(u);
     if (!known)
       return fail("/units", "expected one of \"nm\", \"um\", \"mm\", \"cm\", \"m\", \"in\", \"ft\", found " +
                                 describe_value(*units));
-    out->units = units->get<std::string>();
+    out->units = std::string(units->as_string());
     for (const char* key : {"vertices", "edges", "loops", "faces", "shells"}) {
-      const json* a = required(doc, "", key);
+      JsonView a = required(doc, "", key);
       if (!a) return false;
       if (!a->is_array()) return fail(at("", key), "expected an array, found " + describe_value(*a));
     }
-    if (auto it = doc.find("meta"); it != doc.end()) {
-      if (!meta(*it)) return false;
-      out->meta = *it;
+    if (JsonView m = doc.find("meta")) {
+      if (!meta(m)) return false;
+      out->meta = m.to_json();
     }
     return true;
   }
 
   // meta is free-form; the two keys kintsugi itself reads are checked.
-  bool meta(const json& m) {
+  bool meta(JsonView m) {
     if (!m.is_object()) return fail("/meta", "expected an object, found " + describe_value(m));
-    if (auto t = m.find("tolerance"); t != m.end()) {
+    if (JsonView t = m.find("tolerance")) {
       double tol;
       if (!positive(*t, "/meta/tolerance", &tol)) return false;
     }
-    if (auto d = m.find("defects"); d != m.end()) {
+    if (JsonView d = m.find("defects")) {
       if (!d->is_array()) return fail("/meta/defects", "expected an array, found " + describe_value(*d));
-      for (std::size_t i = 0; i < d->size(); ++i) {
-        const json& defect = (*d)[i];
-        const std::string p = at("/meta/defects", i);
+      std::size_t i = 0;
+      for (JsonView defect = d->first(); defect; defect = defect.next(), ++i) {
+        const Ptr p = at("/meta/defects", i);
         if (!defect.is_object()) return fail(p, "expected a defect (an object), found " + describe_value(defect));
-        const json *type = nullptr, *elements = nullptr, *size = nullptr;
+        JsonView type, elements, size;
         double s;
         if (!(type = required(defect, p, "type")) || !(elements = required(defect, p, "elements")) ||
             !(size = required(defect, p, "size")))
@@ -794,40 +851,40 @@ class DocumentReader final : public ElementSink {
   bool record(IdTable& t, std::uint32_t id, std::size_t i, std::size_t count) {
     std::uint64_t limit = 2 * std::uint64_t(count) + 1024;
     if (id >= limit)
-      return fail(at(at("", t.plural), i) + "/id", std::string(t.kind) + " id " + std::to_string(id) +
+      return fail(at(at(at("", t.plural), i), "id"), std::string(t.kind) + " id " + std::to_string(id) +
                                                       " is too large for " + std::to_string(count) + " " + t.plural +
                                                       " (ids must be below " + std::to_string(limit) + ")");
     if (std::size_t seen = t.find(id); seen != std::string::npos)
-      return fail(at(at("", t.plural), i) + "/id", std::string(t.kind) + " id " + std::to_string(id) +
-                                                      " is used twice (also at " + at(at("", t.plural), seen) + ")");
+      return fail(at(at(at("", t.plural), i), "id"), std::string(t.kind) + " id " + std::to_string(id) +
+                                                      " is used twice (also at " + at(at("", t.plural), seen).str() + ")");
     t.slot[id] = std::uint32_t(i + 1);
     return true;
   }
 
   // One element each; ids are recorded by settle() once the array's length is known.
 
-  bool vertex(const json& v, std::size_t i, VertexDesc* out) {
-    const std::string p = at("/vertices", i);
-    const json *id_j = nullptr, *pt = nullptr;
+  bool vertex(JsonView v, std::size_t i, VertexDesc* out) {
+    const Ptr p = at("/vertices", i);
+    JsonView id_j, pt;
     return object_with_keys(v, p, {"id", "point"}, "a vertex") && (id_j = required(v, p, "id")) &&
            (pt = required(v, p, "point")) && id(*id_j, at(p, "id"), kMaxId, &out->id) &&
            vec3(*pt, at(p, "point"), &out->point);
   }
 
-  bool edge(const json& e, std::size_t i, EdgeDesc* out) {
-    const std::string p = at("/edges", i);
-    const json *id_j = nullptr, *he = nullptr;
+  bool edge(JsonView e, std::size_t i, EdgeDesc* out) {
+    const Ptr p = at("/edges", i);
+    JsonView id_j, he;
     if (!object_with_keys(e, p, {"id", "he", "curve"}, "an edge") || !(id_j = required(e, p, "id")) ||
         !(he = required(e, p, "he")) || !id(*id_j, at(p, "id"), kMaxEdgeId, &out->id))
       return false;
-    const std::string hp = at(p, "he");
+    const Ptr hp = at(p, "he");
     if (!he->is_array() || he->size() != 2)
       return fail(hp, "expected the edge's two half-edges (an array of 2 objects), found " +
                           (he->is_array() ? "an array of " + std::to_string(he->size()) : describe_value(*he)));
     for (std::size_t side = 0; side < 2; ++side) {
-      const json& h = (*he)[side];
-      const std::string sp = at(hp, side);
-      const json *o = nullptr, *n = nullptr, *l = nullptr;
+      JsonView h = (*he)[side];
+      const Ptr sp = at(hp, side);
+      JsonView o, n, l;
       if (!object_with_keys(h, sp, {"origin", "next", "loop"}, "a half-edge") || !(o = required(h, sp, "origin")) ||
           !(n = required(h, sp, "next")) || !(l = required(h, sp, "loop")) ||
           !id(*o, at(sp, "origin"), kMaxId, &out->he[side].origin) ||
@@ -837,19 +894,19 @@ class DocumentReader final : public ElementSink {
     return curve(optional_member(e, "curve"), at(p, "curve"), &out->curve);
   }
 
-  bool loop(const json& l, std::size_t i, LoopDesc* out) {
-    const std::string p = at("/loops", i);
-    const json *id_j = nullptr;
+  bool loop(JsonView l, std::size_t i, LoopDesc* out) {
+    const Ptr p = at("/loops", i);
+    JsonView id_j;
     if (!object_with_keys(l, p, {"id", "face", "first", "lone"}, "a loop") || !(id_j = required(l, p, "id")) ||
         !id(*id_j, at(p, "id"), kMaxId, &out->id))
       return false;
     std::uint32_t v;
-    if (const json* f = optional_member(l, "face")) {
+    if (JsonView f = optional_member(l, "face")) {
       if (!id(*f, at(p, "face"), kMaxId, &v)) return false;
       out->face = v;
     }
-    const json* first = optional_member(l, "first");
-    const json* lone = optional_member(l, "lone");
+    JsonView first = optional_member(l, "first");
+    JsonView lone = optional_member(l, "lone");
     if (first && lone)
       return fail(p, "has both \"first\" and \"lone\": a loop is either a cycle of half-edges or a lone vertex");
     if (!first && !lone) return fail(p, "has neither \"first\" (a half-edge of its cycle) nor \"lone\" (its lone vertex)");
@@ -863,29 +920,30 @@ class DocumentReader final : public ElementSink {
     return true;
   }
 
-  bool face(const json& f, std::size_t i, FaceDesc* out) {
-    const std::string p = at("/faces", i);
-    const json *id_j = nullptr, *shell = nullptr, *ls = nullptr, *sense = nullptr;
+  bool face(JsonView f, std::size_t i, FaceDesc* out) {
+    const Ptr p = at("/faces", i);
+    JsonView id_j, shell, ls, sense;
     if (!object_with_keys(f, p, {"id", "shell", "loops", "same_sense", "surface"}, "a face") ||
         !(id_j = required(f, p, "id")) || !(shell = required(f, p, "shell")) || !(ls = required(f, p, "loops")) ||
         !(sense = required(f, p, "same_sense")) || !id(*id_j, at(p, "id"), kMaxId, &out->id) ||
         !id(*shell, at(p, "shell"), kMaxId, &out->shell))
       return false;
-    const std::string lp = at(p, "loops");
+    const Ptr lp = at(p, "loops");
     if (!ls->is_array() || ls->empty())
       return fail(lp, "expected the face's loops, outer first (a non-empty array), found " +
                           (ls->is_array() ? "an empty array" : describe_value(*ls)));
     out->loops.resize(ls->size());
-    for (std::size_t k = 0; k < ls->size(); ++k)
-      if (!id((*ls)[k], at(lp, k), kMaxId, &out->loops[k])) return false;
+    std::size_t k = 0;
+    for (JsonView x = ls->first(); x; x = x.next(), ++k)
+      if (!id(x, at(lp, k), kMaxId, &out->loops[k])) return false;
     if (!sense->is_boolean()) return fail(at(p, "same_sense"), "expected true or false, found " + describe_value(*sense));
-    out->same_sense = sense->get<bool>();
+    out->same_sense = sense->as_bool();
     return surface(optional_member(f, "surface"), at(p, "surface"), &out->surface);
   }
 
-  bool shell(const json& s, std::size_t i, ShellDesc* out) {
-    const std::string p = at("/shells", i);
-    const json *id_j = nullptr, *genus = nullptr;
+  bool shell(JsonView s, std::size_t i, ShellDesc* out) {
+    const Ptr p = at("/shells", i);
+    JsonView id_j, genus;
     return object_with_keys(s, p, {"id", "genus"}, "a shell") && (id_j = required(s, p, "id")) &&
            (genus = required(s, p, "genus")) && id(*id_j, at(p, "id"), kMaxId, &out->id) &&
            id(*genus, at(p, "genus"), kMaxId, &out->genus);
@@ -910,14 +968,14 @@ class DocumentReader final : public ElementSink {
   bool references(const BodyDescription& d) {
     for (std::size_t i = 0; i < d.edges.size(); ++i)
       for (std::size_t side = 0; side < 2; ++side) {
-        auto p = [&](const char* key) { return [=] { return at(at(at(at("/edges", i), "he"), side), key); }; };
+        auto p = [&](const char* key) { return [=] { return at(at(at(at("/edges", i), "he"), side), key).str(); }; };
         const HalfedgeDesc& h = d.edges[i].he[side];
         if (!refers(vertex_ids_, h.origin, "vertex", p("origin")) || !refers_to_halfedge(h.next, p("next")) ||
             !refers(loop_ids_, h.loop, "loop", p("loop")))
           return false;
       }
     for (std::size_t i = 0; i < d.loops.size(); ++i) {
-      auto p = [&](const char* key) { return [=] { return at(at("/loops", i), key); }; };
+      auto p = [&](const char* key) { return [=] { return at(at("/loops", i), key).str(); }; };
       const LoopDesc& l = d.loops[i];
       if (l.face && !refers(face_ids_, *l.face, "face", p("face"))) return false;
       if (l.first && !refers_to_halfedge(*l.first, p("first"))) return false;
@@ -925,9 +983,9 @@ class DocumentReader final : public ElementSink {
     }
     for (std::size_t i = 0; i < d.faces.size(); ++i) {
       const FaceDesc& f = d.faces[i];
-      if (!refers(shell_ids_, f.shell, "shell", [&] { return at(at("/faces", i), "shell"); })) return false;
+      if (!refers(shell_ids_, f.shell, "shell", [&] { return at(at("/faces", i), "shell").str(); })) return false;
       for (std::size_t k = 0; k < f.loops.size(); ++k) {
-        auto lp = [&] { return at(at(at("/faces", i), "loops"), k); };
+        auto lp = [&] { return at(at(at("/faces", i), "loops"), k).str(); };
         if (!refers(loop_ids_, f.loops[k], "loop", lp)) return false;
         const LoopDesc& l = d.loops[loop_ids_.find(f.loops[k])];
         if (!l.face)
@@ -953,7 +1011,7 @@ class DocumentReader final : public ElementSink {
     };
     auto place = [&](const IdTable& t, std::uint64_t id) -> std::string {
       const std::size_t i = t.find(id);
-      return i == std::string::npos ? std::string() : at(at("", t.plural), i);
+      return i == std::string::npos ? std::string() : at(at("", t.plural), i).str();
     };
     const std::pair<const char*, const IdTable*> words[] = {{"vertex ", &vertex_ids_}, {"edge ", &edge_ids_},
                                                             {"loop ", &loop_ids_},     {"face ", &face_ids_},
@@ -968,7 +1026,7 @@ class DocumentReader final : public ElementSink {
       std::uint64_t side;
       if (table == &edge_ids_ && !p.empty() && element.compare(end, 11, " half-edge ") == 0 &&
           number_after(end + 11, &side) != std::string::npos && side < 2)
-        p = at(at(p, "he"), std::size_t(side));
+        p = spell(spell(p, "he"), std::size_t(side));
       return p;
     }
     if (element.size() < 2 || number_after(1, &n) != element.size()) return "";
@@ -977,7 +1035,7 @@ class DocumentReader final : public ElementSink {
       case 'e': return place(edge_ids_, n);
       case 'h': {
         std::string p = place(edge_ids_, n >> 1);
-        return p.empty() ? p : at(at(p, "he"), std::size_t(n & 1));
+        return p.empty() ? p : spell(spell(p, "he"), std::size_t(n & 1));
       }
       case 'l': return place(loop_ids_, n);
       case 'f': return place(face_ids_, n);
@@ -987,21 +1045,24 @@ class DocumentReader final : public ElementSink {
   }
 };
 
-}  // namespace
-
-namespace {
-
-// The whole reader over characters [first, last).
-template <class Iterator>
-std::optional<NativeDocument> parse_document(Iterator first, Iterator last, std::string* error) {
+// The whole reader over text[0, size), with simdjson_padding() readable bytes past the
+// end of the text (`capacity` is the whole buffer).
+std::optional<NativeDocument> parse_document(const char* text, std::size_t size, std::size_t capacity,
+                                             NativeParser which, std::string* error) {
   try {
+    if (which == NativeParser::kSimdjsonFirst) {
+      DocumentReader reader(error);
+      JsonTree root;
+      if (parse_native_simdjson(text, size, capacity, &reader, &root) == FastParse::kDone)
+        return reader.finish(JsonView(&root, 0));
+    }
     DocumentReader reader(error);
     BoundedDocumentBuilder builder(&reader);
-    if (!json::sax_parse(std::move(first), std::move(last), &builder)) {
+    if (!json::sax_parse(text, text + size, &builder)) {
       if (error) *error = builder.error.empty() ? "not valid JSON" : builder.error;
       return std::nullopt;
     }
-    return reader.finish(builder.root);
+    return reader.finish(builder.root());
   } catch (const std::exception& e) {
     // Nothing above throws on bad input; this is for running out of memory.
     if (error) *error = std::string("cannot read the document: ") + e.what();
@@ -1009,83 +1070,75 @@ std::optional<NativeDocument> parse_document(Iterator first, Iterator last, std:
   }
 }
 
-// A file's bytes, read in 64 KiB chunks as the parser asks for them, so the text is never
-// in memory as a whole. A read error or more than kMaxNativeBytes ends the input as if
-// the file ended there, and is remembered: the caller reports it instead of whatever the
-// parser made of the truncated text.
-class FileSource {
- public:
-  explicit FileSource(int fd) : fd_(fd) {}
+// Asks for the buffer's memory in huge pages where the system allows it (Linux's
+// transparent huge pages set to "madvise"): a large file's text then costs a page fault per
+// 2 MiB instead of per 4 KiB, which on a virtual machine is a good part of reading it.
+void advise_huge_pages(char* p, std::size_t n) {
+#ifdef MADV_HUGEPAGE
+  const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (std::uintptr_t(p) + page - 1) / page * page;
+  const std::uintptr_t last = (std::uintptr_t(p) + n) / page * page;
+  if (n >= (std::size_t(1) << 22) && last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)n;
+#endif
+}
 
-  bool more() { return pos_ < len_ || refill(); }
-  char get() const { return buf_[pos_]; }
-  void next() { ++pos_; }
-  // Reads what is left (to find whether the file goes past the limit, or cannot be read).
-  void drain() {
-    while (refill()) pos_ = len_;
-  }
-  int read_errno() const { return read_errno_; }
-  bool too_large() const { return too_large_; }
+// A file's bytes, whole, with the padding the fast parser needs after them. Reads up to
+// one byte past kMaxNativeBytes, checking the cap as it reads rather than trusting stat:
+// the file may grow, or be a pipe.
+struct FileText {
+  std::unique_ptr<char[]> bytes;
+  std::size_t size = 0, capacity = 0;
+  int read_errno = 0;
+  bool too_large = false;
 
-  // The input iterator nlohmann's parser reads through (it uses only !=, * and ++).
-  struct Iterator {
-    using iterator_category = std::input_iterator_tag;
-    using value_type = char;
-    using difference_type = std::ptrdiff_t;
-    using pointer = const char*;
-    using reference = char;
-    FileSource* source;  // nullptr: the end
-    char operator*() const { return source->get(); }
-    Iterator& operator++() {
-      source->next();
-      return *this;
-    }
-    bool operator==(const Iterator& other) const { return at_end() == other.at_end(); }
-    bool operator!=(const Iterator& other) const { return !(*this == other); }
-    bool at_end() const { return !source || !source->more(); }
-  };
-
- private:
-  int fd_;
-  std::array<char, 1 << 16> buf_;
-  std::size_t pos_ = 0, len_ = 0;
-  std::uint64_t total_ = 0;
-  bool ended_ = false;
-  int read_errno_ = 0;
-  bool too_large_ = false;
-
-  bool refill() {
-    pos_ = len_ = 0;
-    while (!ended_) {
-      ssize_t n = ::read(fd_, buf_.data(), buf_.size());
+  explicit FileText(int fd, std::size_t size_hint) {
+    grow(std::min<std::size_t>(size_hint, kMaxNativeBytes) + 1);
+    for (;;) {
+      if (size == capacity - simdjson_padding()) grow(std::min<std::size_t>(2 * size, kMaxNativeBytes + 1));
+      ssize_t n = ::read(fd, bytes.get() + size, capacity - simdjson_padding() - size);
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0) read_errno_ = errno;
-      if (n > 0 && total_ + std::uint64_t(n) > kMaxNativeBytes) too_large_ = true;
-      if (n <= 0 || too_large_) {
-        ended_ = true;
+      if (n < 0) read_errno = errno;
+      if (n <= 0) break;
+      size += std::size_t(n);
+      if (size > kMaxNativeBytes) {
+        too_large = true;
         break;
       }
-      total_ += std::uint64_t(n);
-      len_ = std::size_t(n);
-      return true;
     }
-    return false;
+  }
+
+ private:
+  void grow(std::size_t text_capacity) {
+    text_capacity = std::max<std::size_t>(text_capacity, size + 1);
+    auto more = std::make_unique_for_overwrite<char[]>(text_capacity + simdjson_padding());
+    advise_huge_pages(more.get(), text_capacity + simdjson_padding());
+    if (size) std::memcpy(more.get(), bytes.get(), size);
+    bytes = std::move(more);
+    capacity = text_capacity + simdjson_padding();
   }
 };
 
 }  // namespace
 
-std::optional<NativeDocument> read_native(std::string_view text, std::string* error) {
+std::optional<NativeDocument> read_native(std::string_view text, std::string* error, NativeParser which) {
   if (text.size() > kMaxNativeBytes) {
     if (error)
       *error = "document is " + std::to_string(text.size()) + " bytes, more than the limit of " +
                std::to_string(kMaxNativeBytes);
     return std::nullopt;
   }
-  return parse_document(text.begin(), text.end(), error);
+  if (which == NativeParser::kReferenceOnly) return parse_document(text.data(), text.size(), text.size(), which, error);
+  std::string padded;
+  padded.reserve(text.size() + simdjson_padding());
+  padded.assign(text);
+  padded.resize(text.size() + simdjson_padding(), ' ');
+  return parse_document(padded.data(), text.size(), padded.size(), which, error);
 }
 
-std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error) {
+std::optional<NativeDocument> read_native_file(const std::string& path, std::string* error, NativeParser which) {
   auto refuse = [&](const std::string& why) {
     if (error) *error = path + ": " + why;
     return std::nullopt;
@@ -1102,16 +1155,12 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
   if (S_ISREG(st.st_mode) && std::uint64_t(st.st_size) > kMaxNativeBytes)
     return refuse("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                   std::to_string(kMaxNativeBytes) + "; refusing to read it");
-  // Parsed as it is read, with the cap checked as it reads, not only from stat: the file
-  // may grow, or be a pipe.
-  auto source = std::make_unique<FileSource>(fd);
+  std::size_t hint = S_ISREG(st.st_mode) ? std::size_t(st.st_size) : std::size_t(1) << 16;
+  FileText text(fd, hint);
+  if (text.read_errno) return refuse(std::string("cannot read: ") + std::strerror(text.read_errno));
+  if (text.too_large) return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
   std::string why;
-  auto doc = parse_document(FileSource::Iterator{source.get()}, FileSource::Iterator{nullptr}, &why);
-  // A file past the limit or unreadable is refused as such, whatever the parser said.
-  if (!doc) source->drain();
-  if (source->read_errno()) return refuse(std::string("cannot read: ") + std::strerror(source->read_errno()));
-  if (source->too_large())
-    return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
+  auto doc = parse_document(text.bytes.get(), text.size, text.capacity, which, &why);
   if (!doc) return refuse(why);
   return doc;
 }

@@ -1,0 +1,182 @@
+// The fast parser of the native reader: simdjson's On-Demand API walked value by value
+// into JsonTrees (io/native_json_parse.h says when it gives up and why that is safe).
+#include "io/native_json_parse.h"
+
+#include "io/native_json.h"
+
+#include <simdjson.h>
+
+#include <cstdint>
+#include <string_view>
+#include <utility>
+
+namespace kintsugi::io {
+
+namespace od = simdjson::ondemand;
+
+namespace {
+
+class SimdjsonTreeParser {
+ public:
+  SimdjsonTreeParser(ElementSink* sink, JsonTree* root, std::size_t bytes) : sink_(sink), root_(root), bytes_(bytes) {}
+
+  bool document(od::document& doc) {
+    od::object top;
+    if (doc.get_object().get(top)) return false;
+    root_.reset();
+    root_.open_object();
+    for (auto member : top) {
+      od::field field;
+      std::string_view key;
+      if (std::move(member).get(field) || !key_of(field, &key) || !root_.key(key)) return false;
+      od::value v = field.value();
+      od::json_type type;
+      if (v.type().get(type)) return false;
+      const int kind = element_kind(key);
+      if (kind >= 0 && type == od::json_type::array) {
+        if (!elements(v, ElementKind(kind))) return false;
+      } else if (!value(v, root_, 1)) {
+        return false;
+      }
+    }
+    root_.close();
+    // Nothing but white space after the top level (current_location fails at the end).
+    const char* rest = nullptr;
+    return doc.current_location().get(rest) == simdjson::OUT_OF_BOUNDS;
+  }
+
+ private:
+  ElementSink* sink_;
+  JsonTreeBuilder root_;
+  std::size_t bytes_;
+  JsonTree element_tree_;
+  JsonTreeBuilder element_{&element_tree_};
+
+  static int element_kind(std::string_view key) {
+    for (int k = 0; k < kElementKinds; ++k)
+      if (key == kElementKeys[k]) return k;
+    return -1;
+  }
+
+  // A member's key. Most keys have no escapes, and their text in the document is the key:
+  // no copy into simdjson's string buffer (stage 1 has checked the document's UTF-8, its
+  // quotes and that no control character is unescaped).
+  static bool key_of(od::field& field, std::string_view* key) {
+    const char* raw = field.key().raw();
+    const char* end = raw;
+    while (*end != '"' && *end != '\\') ++end;
+    if (*end == '"') {
+      *key = std::string_view(raw, std::size_t(end - raw));
+      return true;
+    }
+    return !field.unescaped_key().get(*key);
+  }
+
+  // An element array: an empty stand-in in the top level; each element built alone.
+  bool elements(od::value& v, ElementKind kind) {
+    root_.open_array();
+    root_.close();
+    od::array a;
+    std::size_t count = 0;
+    if (v.get_array().get(a) || a.count_elements().get(count)) return false;
+    sink_->expect(kind, count, bytes_);
+    std::size_t index = 0;
+    for (auto item : a) {
+      od::value e;
+      if (std::move(item).get(e)) return false;
+      element_.reset();
+      if (!value(e, element_, 2)) return false;
+      sink_->element(kind, index++, JsonView(&element_tree_, 0));
+    }
+    return true;
+  }
+
+  // One value into `b`; `open` containers enclose it in the document.
+  bool value(od::value& v, JsonTreeBuilder& b, std::size_t open) {
+    od::json_type type;
+    if (v.type().get(type)) return false;
+    switch (type) {
+      case od::json_type::object: {
+        if (open >= kMaxNativeDepth) return false;
+        od::object o;
+        if (v.get_object().get(o)) return false;
+        b.open_object();
+        for (auto member : o) {
+          od::field field;
+          std::string_view key;
+          if (std::move(member).get(field) || !key_of(field, &key) || !b.key(key)) return false;
+          od::value child = field.value();
+          if (!value(child, b, open + 1)) return false;
+        }
+        b.close();
+        return true;
+      }
+      case od::json_type::array: {
+        if (open >= kMaxNativeDepth) return false;
+        od::array a;
+        if (v.get_array().get(a)) return false;
+        b.open_array();
+        for (auto item : a) {
+          od::value child;
+          if (std::move(item).get(child) || !value(child, b, open + 1)) return false;
+        }
+        b.close();
+        return true;
+      }
+      case od::json_type::number: return number(v, b);
+      case od::json_type::string: {
+        std::string_view s;
+        if (v.get_string().get(s)) return false;
+        b.string(s);
+        return true;
+      }
+      case od::json_type::boolean: {
+        bool x;
+        if (v.get_bool().get(x)) return false;
+        b.boolean(x);
+        return true;
+      }
+      case od::json_type::null: {
+        bool is_null = false;
+        if (v.is_null().get(is_null) || !is_null) return false;
+        b.null();
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // As nlohmann types numbers: with a fraction or exponent a double, else without a minus
+  // sign unsigned, with one signed ("-0" too).
+  bool number(od::value& v, JsonTreeBuilder& b) {
+    const bool negative = v.is_negative();
+    od::number n;
+    if (v.get_number().get(n)) return false;  // also: outside a double, or outside 64 bits
+    switch (n.get_number_type()) {
+      case od::number_type::floating_point_number: b.floating(n.get_double()); return true;
+      case od::number_type::signed_integer:
+        if (negative)
+          b.integer(n.get_int64());
+        else
+          b.unsigned_integer(std::uint64_t(n.get_int64()));
+        return true;
+      case od::number_type::unsigned_integer: b.unsigned_integer(n.get_uint64()); return true;
+    }
+    return false;
+  }
+};
+
+}  // namespace
+
+std::size_t simdjson_padding() { return simdjson::SIMDJSON_PADDING; }
+
+FastParse parse_native_simdjson(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
+                                JsonTree* root) {
+  od::parser parser;
+  od::document doc;
+  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
+  SimdjsonTreeParser p(sink, root, size);
+  return p.document(doc) ? FastParse::kDone : FastParse::kUseReference;
+}
+
+}  // namespace kintsugi::io

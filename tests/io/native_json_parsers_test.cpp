@@ -1,0 +1,170 @@
+// The native reader's two parsers agree (io/native_json_parse.h): simdjson first, falling
+// back on nlohmann's, against nlohmann's alone — the same verdict, the same message, the
+// same body, meta and units — on hand-picked JSON corner cases and on random documents
+// damaged the ways files get damaged. And the fast parser is really the one that reads
+// ordinary documents (else the agreement would be the reference agreeing with itself).
+#include "io/native_json.h"
+#include "io/native_json_parse.h"
+#include "kernel/builders.h"
+#include "zoo/zoo.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace kintsugi::io {
+namespace {
+
+// "" when both parsers say the same of `text`, else what differs.
+std::string disagreement(const std::string& text) {
+  std::string fast_error, reference_error;
+  auto fast = read_native(text, &fast_error, NativeParser::kSimdjsonFirst);
+  auto reference = read_native(text, &reference_error, NativeParser::kReferenceOnly);
+  if (bool(fast) != bool(reference))
+    return fast ? "simdjson accepted, the reference refused: " + reference_error
+                : "the reference accepted, simdjson refused: " + fast_error;
+  if (!fast) return fast_error == reference_error ? "" : "messages differ:\n  " + fast_error + "\n  " + reference_error;
+  std::string why;
+  if (!fast->body.equals(reference->body, &why)) return "bodies differ: " + why;
+  if (fast->meta != reference->meta) return "meta differs: " + fast->meta.dump() + " vs " + reference->meta.dump();
+  if (fast->units != reference->units) return "units differ";
+  return "";
+}
+
+// Does the simdjson parser read `text` itself, without falling back?
+bool simdjson_reads(const std::string& text) {
+  struct Count : ElementSink {
+    std::size_t n = 0;
+    void element(ElementKind, std::size_t, JsonView) override { ++n; }
+    void expect(ElementKind, std::size_t, std::size_t) override {}
+  } sink;
+  std::string padded = text + std::string(simdjson_padding(), ' ');
+  JsonTree root;
+  return parse_native_simdjson(padded.data(), text.size(), padded.size(), &sink, &root) == FastParse::kDone;
+}
+
+const std::string& box_text() {
+  static const std::string t = write_native(build::box(), {{"tolerance", 0.01}, {"seed", 7}});
+  return t;
+}
+
+// `text` with the first occurrence of `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(NativeReaderParsers, SimdjsonReadsOrdinaryDocumentsItself) {
+  EXPECT_TRUE(simdjson_reads(box_text()));
+  zoo::ZooModel m = zoo::family(500, 0.5, 2);
+  EXPECT_TRUE(simdjson_reads(write_native(m.body, m.meta(), "mm")));
+  // Keys with escapes, other spacing, members in another order: still its own.
+  EXPECT_TRUE(simdjson_reads(replaced(box_text(), "\"format\"", "\"form\\u0061t\"")));
+  EXPECT_TRUE(simdjson_reads(nlohmann::json::parse(box_text()).dump()));
+}
+
+TEST(NativeReaderParsers, SimdjsonLeavesTheOutOfTheOrdinaryToTheReference) {
+  // Each of these the reference must read (or word the refusal of) itself.
+  EXPECT_FALSE(simdjson_reads(box_text() + " x"));
+  EXPECT_FALSE(simdjson_reads(replaced(box_text(), "\"units\"", "\"format\": \"kintsugi-brep\", \"units\"")));
+  EXPECT_FALSE(simdjson_reads(replaced(box_text(), "\"seed\": 7", "\"seed\": 1e999")));
+  EXPECT_FALSE(simdjson_reads(replaced(box_text(), "\"seed\": 7", "\"seed\": 18446744073709551616")));
+  EXPECT_FALSE(simdjson_reads(replaced(box_text(), "\"seed\": 7", "\"seed\": " + std::string(64, '[') + std::string(64, ']'))));
+  EXPECT_FALSE(simdjson_reads(""));
+}
+
+TEST(NativeReaderParsers, AgreeOnJsonCornerCases) {
+  const std::string& t = box_text();
+  auto deep = [](int n) { return std::string(std::size_t(n), '[') + std::string(std::size_t(n), ']'); };
+  std::vector<std::string> cases = {
+      "", " ", "{}", "[]", "null", "\xef\xbb\xbf" + t, t + "\n\t ", t + " x", t + "{}",
+      // Numbers, as ids and in meta: signs, fractions, exponents, 64-bit edges.
+      replaced(t, "\"id\": 0", "\"id\": -0"), replaced(t, "\"id\": 0", "\"id\": 0.0"),
+      replaced(t, "\"id\": 0", "\"id\": 0e0"), replaced(t, "\"id\": 0", "\"id\": -1"),
+      replaced(t, "\"id\": 0", "\"id\": 01"), replaced(t, "\"id\": 0", "\"id\": +0"),
+      replaced(t, "\"id\": 0", "\"id\": 4294967295"), replaced(t, "\"id\": 0", "\"id\": 9223372036854775808"),
+      replaced(t, "\"seed\": 7", "\"seed\": 18446744073709551615"),
+      replaced(t, "\"seed\": 7", "\"seed\": 18446744073709551616"),
+      replaced(t, "\"seed\": 7", "\"seed\": -9223372036854775808"),
+      replaced(t, "\"seed\": 7", "\"seed\": -9223372036854775809"), replaced(t, "\"seed\": 7", "\"seed\": 1e308"),
+      replaced(t, "\"seed\": 7", "\"seed\": 1e309"), replaced(t, "\"seed\": 7", "\"seed\": 1e-400"),
+      replaced(t, "\"seed\": 7", "\"seed\": -0.0"), replaced(t, "\"seed\": 7", "\"seed\": .5"),
+      replaced(t, "\"seed\": 7", "\"seed\": 1."), replaced(t, "\"seed\": 7", "\"seed\": NaN"),
+      replaced(t, "\"seed\": 7", "\"seed\": 4.9e-324"), replaced(t, "\"seed\": 7", "\"seed\": 0.1e1"),
+      replaced(t, "\"tolerance\": 0.01", "\"tolerance\": 1E-2"),
+      // Literals and strings.
+      replaced(t, "\"seed\": 7", "\"seed\": nul"), replaced(t, "\"seed\": 7", "\"seed\": truee"),
+      replaced(t, "\"seed\": 7", "\"seed\": \"a\\u0000b\""), replaced(t, "\"seed\": 7", "\"seed\": \"\\ud800\""),
+      replaced(t, "\"seed\": 7", "\"seed\": \"\\ud83d\\ude00\""), replaced(t, "\"seed\": 7", "\"seed\": \"\x01\""),
+      replaced(t, "\"seed\": 7", "\"seed\": \"\xff\""), replaced(t, "\"seed\": 7", "\"seed\": 'x'"),
+      replaced(t, "\"seed\": 7", "\"seed\": \"\\x\""), replaced(t, "\"seed\": 7", "\"seed\": 7 // note"),
+      replaced(t, "\"units\": \"mm\"", "\"units\": \"m\\u006d\""), replaced(t, "\"units\": \"mm\"", "\"units\": \"in\""),
+      // Keys: escaped, duplicated (in the top level, an element, meta), unknown.
+      replaced(t, "\"format\"", "\"form\\u0061t\""), replaced(t, "\"format\"", "\"form\\/at\""),
+      replaced(t, "\"units\"", "\"format\": \"kintsugi-brep\", \"units\""),
+      replaced(t, "\"point\"", "\"id\": 0, \"point\""), replaced(t, "\"seed\": 7", "\"seed\": 7, \"seed\": 8"),
+      replaced(t, "\"point\"", "\"colour\": 1, \"point\""), replaced(t, "\"point\"", "\"po\\u0000int\""),
+      // Structure: the element arrays missing, not arrays, in another order; nesting at the limit.
+      replaced(t, "\"vertices\"", "\"vertices_\""), replaced(t, "\"shells\": [", "\"shells\": {\"a\": [") + "}",
+      replaced(t, "\"seed\": 7", "\"seed\": " + deep(62)), replaced(t, "\"seed\": 7", "\"seed\": " + deep(63)),
+      replaced(t, "\"seed\": 7", "\"seed\": " + deep(64)), replaced(t, "\"seed\": 7", "\"seed\": [1,]"),
+      replaced(t, "\"seed\": 7", "\"seed\": {\"a\": 1,}"), replaced(t, "\"seed\": 7", "\"seed\": {1: 2}"),
+      t.substr(0, t.size() / 2), t.substr(0, t.size() - 1), t.substr(1),
+  };
+  // A meta object with many keys (the builder's hash set), once with a repeat.
+  std::string many = "{";
+  for (int k = 0; k < 40; ++k) many += (k ? ", \"k" : "\"k") + std::to_string(k) + "\": " + std::to_string(k);
+  cases.push_back(replaced(t, "\"seed\": 7", "\"seed\": " + many + "}"));
+  cases.push_back(replaced(t, "\"seed\": 7", "\"seed\": " + many + ", \"k17\": 0}"));
+  for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(disagreement(cases[i]), "") << "case " << i << ":\n" << cases[i].substr(0, 300);
+}
+
+// A written document with one small damage, as a truncated copy, a bad disk sector or a
+// careless hand edit makes: a byte replaced, removed, inserted or a span repeated.
+std::string damaged(const std::string& text) {
+  static const std::string bytes = "{}[],:\"\\ 0123456789-+.eEtrufalsn/\x01\xff\xc3";
+  std::string t = text;
+  const int edits = *rc::gen::inRange(1, 4);
+  for (int e = 0; e < edits && !t.empty(); ++e) {
+    const std::size_t at = *rc::gen::inRange<std::size_t>(0, t.size());
+    const char c = bytes[*rc::gen::inRange<std::size_t>(0, bytes.size())];
+    switch (*rc::gen::inRange(0, 4)) {
+      case 0: t[at] = c; break;
+      case 1: t.erase(at, 1); break;
+      case 2: t.insert(t.begin() + std::ptrdiff_t(at), c); break;
+      default: {
+        const std::size_t n = *rc::gen::inRange<std::size_t>(1, 40);
+        t.insert(at, t.substr(at, n));
+      }
+    }
+  }
+  return t;
+}
+
+RC_GTEST_PROP(NativeReaderParsers, AgreeOnDamagedDocuments, ()) {
+  const int which = *rc::gen::inRange(0, 4);
+  std::string text;
+  switch (which) {
+    case 0: text = box_text(); break;
+    case 1: text = write_native(build::cylinder(1.5, 2.0)); break;
+    case 2: text = nlohmann::json::parse(box_text()).dump(); break;
+    default: {
+      zoo::ZooModel m = zoo::family(std::size_t(*rc::gen::inRange(10, 60)), 0.5, *rc::gen::inRange<std::uint64_t>(1, 1000));
+      text = write_native(m.body, m.meta(), "mm");
+    }
+  }
+  const std::string t = damaged(text);
+  std::string error;
+  RC_CLASSIFY(read_native(t, &error).has_value(), "still accepted");
+  RC_CLASSIFY(simdjson_reads(t), "simdjson read it itself");
+  const std::string d = disagreement(t);
+  RC_ASSERT(d == "");
+}
+
+}  // namespace
+}  // namespace kintsugi::io
