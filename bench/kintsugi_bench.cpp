@@ -36,6 +36,7 @@
 //     [{"faces", "build_seconds", "model_rss_bytes", "detect_seconds",
 //     "beautify_seconds", "passes": {type: s}, "repaired", "not_repaired",
 //     "peak_rss_bytes"}], "exponent": {"detect", "beautify"}}.
+#include "apps/api.h"
 #include "bench/bench_child.h"
 #include "bench/solvers_bench.h"
 #ifdef KINTSUGI_HAVE_OCCT
@@ -272,17 +273,15 @@ int bench_beautify(int argc, char** argv) {
       const Detection d = detect(m.body, tol);
       j["detect_seconds"] = seconds_since(t0);
       j["problems"] = d.problems.size();
-      BeautifyOptions o;
-      o.check_topology_each_repair = false;
-      t0 = std::chrono::steady_clock::now();
-      const BeautifyReport rep = beautify(m.body, tol, o);
-      const bool valid = check_topology(m.body).empty();  // once at the end, as the CLI does
-      j["beautify_seconds"] = seconds_since(t0);
-      nlohmann::ordered_json passes = nlohmann::ordered_json::object();
-      for (ProblemType t : kAllProblemTypes) passes[problem_name(t)] = rep.seconds[problem_order(t) - 1];
-      j["passes"] = passes;
-      j["repaired"] = rep.repaired();
-      j["not_repaired"] = rep.not_repaired();
+      // The CLI's own path (apps/api.h): the validity gate with OpenCASCADE's half where
+      // it is built, the whole-body check once at the end; its report's seconds.
+      api::Model model{std::move(m.body), m.meta(), "mm", "json"};
+      const nlohmann::json rep = api::beautify(model, m.tolerance);
+      j["beautify_seconds"] = rep["seconds"]["beautify"];
+      j["passes"] = rep["seconds"]["passes"];
+      j["repaired"] = api::repaired_count(rep);
+      j["not_repaired"] = api::not_repaired_count(rep);
+      const bool valid = check_topology(model.body).empty();
       if (!valid) j["error"] = "the beautified body fails the topology check";
       return j;
     });

@@ -6,24 +6,64 @@
 
 #include <TopoDS_Shape.hxx>
 
+#include <algorithm>
 #include <functional>
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace kintsugi::io::occt {
 
+// Sub-shapes by element index: a vector for a whole body, a hash map for a few faces (a
+// repair's region), so that converting a region costs what the region holds however large
+// the body. An index never set reads as a null shape.
+class ShapeSlots {
+ public:
+  // Dense storage for `n` slots (a whole body); until then, sparse.
+  void make_dense(std::size_t n) {
+    dense_.resize(n);
+    sparse_mode_ = false;
+  }
+  TopoDS_Shape& operator[](std::size_t i) { return sparse_mode_ ? sparse_[i] : dense_[i]; }
+  const TopoDS_Shape& operator[](std::size_t i) const {
+    if (!sparse_mode_) return dense_[i];
+    auto it = sparse_.find(i);
+    return it == sparse_.end() ? null_ : it->second;
+  }
+  // f(index, shape) for each slot holding a shape, by increasing index.
+  template <class F>
+  void for_each(F f) const {
+    if (!sparse_mode_) {
+      for (std::size_t i = 0; i < dense_.size(); ++i)
+        if (!dense_[i].IsNull()) f(i, dense_[i]);
+      return;
+    }
+    std::vector<std::size_t> keys;
+    for (const auto& [i, shape] : sparse_)
+      if (!shape.IsNull()) keys.push_back(i);
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i : keys) f(i, sparse_.at(i));
+  }
+
+ private:
+  bool sparse_mode_ = true;
+  std::vector<TopoDS_Shape> dense_;
+  std::unordered_map<std::size_t, TopoDS_Shape> sparse_;
+  TopoDS_Shape null_;
+};
+
 // The shape made from a body, and which sub-shape came from which element (for
-// BRepCheck messages). Sub-shape lists are indexed by handle; dead slots hold null shapes.
+// BRepCheck messages), by handle index; dead or unconverted slots hold null shapes.
 struct BuiltShape {
-  TopoDS_Shape shape;                    // a solid or shell, or a compound of them
-  std::vector<TopoDS_Shape> vertex;      // TopoDS_Vertex per VertexH
-  std::vector<TopoDS_Shape> edge;        // TopoDS_Edge per EdgeH (FORWARD = half-edge 2e)
-  std::vector<TopoDS_Shape> face;        // TopoDS_Face per FaceH, oriented outward
-  std::vector<TopoDS_Shape> loop_wire;   // TopoDS_Wire per LoopH (face loops only)
-  std::vector<TopoDS_Shape> shell;       // TopoDS_Shell per ShellH
-  std::vector<TopoDS_Shape> solid;       // TopoDS_Solid per closed ShellH
+  TopoDS_Shape shape;   // a solid or shell, or a compound of them
+  ShapeSlots vertex;    // TopoDS_Vertex per VertexH
+  ShapeSlots edge;      // TopoDS_Edge per EdgeH (FORWARD = half-edge 2e)
+  ShapeSlots face;      // TopoDS_Face per FaceH, oriented outward
+  ShapeSlots loop_wire; // TopoDS_Wire per LoopH (face loops only)
+  ShapeSlots shell;     // TopoDS_Shell per ShellH
+  ShapeSlots solid;     // TopoDS_Solid per closed ShellH
 };
 
 // Builds the shape with one shared TopoDS_Edge per edge and one TopoDS_Vertex per

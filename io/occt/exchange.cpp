@@ -452,9 +452,10 @@ OcctVerdict occt_check(const Body& b) {
     }
     // Names for the sub-shapes, from the element each came from.
     std::vector<std::pair<TopoDS_Shape, std::string>> named;
-    auto add = [&](const std::vector<TopoDS_Shape>& shapes, const char* prefix, const char* what) {
-      for (std::size_t i = 0; i < shapes.size(); ++i)
-        if (!shapes[i].IsNull()) named.emplace_back(shapes[i], std::string(what) + " " + prefix + std::to_string(i));
+    auto add = [&](const occt::ShapeSlots& shapes, const char* prefix, const char* what) {
+      shapes.for_each([&](std::size_t i, const TopoDS_Shape& shape) {
+        named.emplace_back(shape, std::string(what) + " " + prefix + std::to_string(i));
+      });
     };
     add(s->vertex, "v", "vertex");
     add(s->edge, "e", "edge");

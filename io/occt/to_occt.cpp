@@ -228,18 +228,14 @@ class Builder {
   explicit Builder(const Body& b, const std::set<FaceH>* only = nullptr) : b_(b), only_(only) {}
 
   std::optional<BuiltShape> run(std::string* error) {
-    out_.vertex.resize(b_.vertex_slots());
-    out_.edge.resize(b_.edge_slots());
-    out_.face.resize(b_.face_slots());
-    out_.loop_wire.resize(b_.loop_slots());
-    out_.shell.resize(b_.shell_slots());
-    out_.solid.resize(b_.shell_slots());
-    for (VertexH v : b_.vertices()) {
-      TopoDS_Vertex tv;
-      bb_.MakeVertex(tv, pnt(b_.point(v)), kTol);
-      out_.vertex[v.idx()] = tv;
-    }
     if (only_) return run_faces(error);
+    out_.vertex.make_dense(b_.vertex_slots());
+    out_.edge.make_dense(b_.edge_slots());
+    out_.face.make_dense(b_.face_slots());
+    out_.loop_wire.make_dense(b_.loop_slots());
+    out_.shell.make_dense(b_.shell_slots());
+    out_.solid.make_dense(b_.shell_slots());
+    for (VertexH v : b_.vertices()) make_vertex(v);
     for (EdgeH e : b_.edges())
       if (!make_edge(e, error)) return std::nullopt;
     for (FaceH f : b_.faces())
@@ -249,6 +245,12 @@ class Builder {
   }
 
  private:
+  void make_vertex(VertexH v) {
+    TopoDS_Vertex tv;
+    bb_.MakeVertex(tv, pnt(b_.point(v)), kTol);
+    out_.vertex[v.idx()] = tv;
+  }
+
   bool make_edge(EdgeH e, std::string* error) {
     HalfedgeH h = halfedge_of(e, 0);
     VertexH v0 = b_.origin(h), v1 = b_.target(h);
@@ -600,10 +602,18 @@ class Builder {
   // check needs, at a cost that does not grow with the model.
   std::optional<BuiltShape> run_faces(std::string* error) {
     std::set<EdgeH> edges;
+    std::set<VertexH> vertices;
     for (FaceH f : *only_)
       for (LoopH l : b_.loops_of(f))
-        if (!b_.is_lone(l))
-          for (HalfedgeH h : b_.loop_halfedges(l)) edges.insert(edge_of(h));
+        if (b_.is_lone(l)) {
+          vertices.insert(b_.lone_vertex(l));
+        } else {
+          for (HalfedgeH h : b_.loop_halfedges(l)) {
+            edges.insert(edge_of(h));
+            vertices.insert(b_.origin(h));
+          }
+        }
+    for (VertexH v : vertices) make_vertex(v);
     for (EdgeH e : edges)
       if (!make_edge(e, error)) return std::nullopt;
     TopoDS_Compound c;
