@@ -147,20 +147,35 @@ class SimdjsonTreeParser {
   }
 
   // As nlohmann types numbers: with a fraction or exponent a double, else without a minus
-  // sign unsigned, with one signed ("-0" too).
+  // sign unsigned, with one signed ("-0" too). Through the typed getters: simdjson 3.0's
+  // get_number() reads a double of more than 19 digits as 0 (the json_reader fuzz target
+  // found it within seconds).
   bool number(od::value& v, JsonTreeBuilder& b) {
     const bool negative = v.is_negative();
-    od::number n;
-    if (v.get_number().get(n)) return false;  // also: outside a double, or outside 64 bits
-    switch (n.get_number_type()) {
-      case od::number_type::floating_point_number: b.floating(n.get_double()); return true;
-      case od::number_type::signed_integer:
-        if (negative)
-          b.integer(n.get_int64());
-        else
-          b.unsigned_integer(std::uint64_t(n.get_int64()));
+    od::number_type type;
+    if (v.get_number_type().get(type)) return false;
+    switch (type) {
+      case od::number_type::floating_point_number: {
+        double d;
+        if (v.get_double().get(d)) return false;  // also: outside a double
+        b.floating(d);
         return true;
-      case od::number_type::unsigned_integer: b.unsigned_integer(n.get_uint64()); return true;
+      }
+      case od::number_type::signed_integer: {
+        std::int64_t i;
+        if (v.get_int64().get(i)) return false;
+        if (negative)
+          b.integer(i);
+        else
+          b.unsigned_integer(std::uint64_t(i));
+        return true;
+      }
+      case od::number_type::unsigned_integer: {
+        std::uint64_t u;
+        if (v.get_uint64().get(u)) return false;  // also: past 64 bits
+        b.unsigned_integer(u);
+        return true;
+      }
     }
     return false;
   }
