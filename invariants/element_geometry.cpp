@@ -58,6 +58,23 @@ std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double
   return loops;
 }
 
+std::vector<geo::Vec3> surface_samples(const Body& b, FaceH f, double chordal) {
+  std::vector<geo::Vec3> pts;
+  const bool planar = std::holds_alternative<geo::Plane>(b.surface(f));
+  for (LoopH l : b.loops_of(f)) {
+    if (b.is_lone(l)) {
+      pts.push_back(b.point(b.lone_vertex(l)));
+    } else {
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
+        pts.insert(pts.end(), seg.begin(), seg.end() - 1);
+      }
+    }
+    if (planar) break;  // the outer loop comes first
+  }
+  return pts;
+}
+
 geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only) {
   geo::AreaOptions o;
   o.reversed = !b.same_sense(f);

@@ -21,6 +21,14 @@ std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chor
 double edge_length(const Body& b, EdgeH e);
 // The face's loops as closed polylines (outer first), for geo::measure_region.
 std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal);
+// The points that stand for the face when its surface is compared with another of the
+// same type (geo::surface_deviation, in detection and in pass 8): its boundary samples —
+// for a planar face those of its outer loop alone. A point's signed distance to another
+// plane is affine in the point, so over a planar face it is largest at a corner of the
+// face's convex hull, which is on the outer loop (the other loops lie inside it): the
+// deviation of two planes is the same either way, and a plate with a hole per feature
+// costs four edges instead of every hole.
+std::vector<geo::Vec3> surface_samples(const Body& b, FaceH f, double chordal);
 // Area, centroid, bounding box and tessellation of a face; `problem` says why not. With
 // `area_and_bounds_only`, no tessellation or centroid (geo::AreaOptions says how that
 // is cheaper).

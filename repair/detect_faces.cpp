@@ -306,8 +306,7 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
   auto samples = [&](FaceH f) -> const std::vector<geo::Vec3>& {
     auto it = cache.find(f);
     if (it == cache.end()) {
-      it = cache.emplace(f, std::vector<geo::Vec3>{}).first;
-      for (const auto& loop : face_boundary(b, f, c.tol.probe_chordal())) it->second.insert(it->second.end(), loop.begin(), loop.end());
+      it = cache.emplace(f, surface_samples(b, f, c.tol.probe_chordal())).first;
     }
     return it->second;
   };

@@ -16,10 +16,10 @@ namespace kintsugi::detail {
 
 namespace {
 
+// What detection compared (invariants/element_geometry.h): the fit over them is within
+// the tolerance of the whole faces exactly when it is within it of these points.
 std::vector<geo::Vec3> samples(const Body& b, FaceH f, const geo::Tolerances& tol) {
-  std::vector<geo::Vec3> pts;
-  for (const auto& loop : face_boundary(b, f, tol.probe_chordal())) pts.insert(pts.end(), loop.begin(), loop.end());
-  return pts;
+  return surface_samples(b, f, tol.probe_chordal());
 }
 
 // Edges with f on one side and g on the other.
