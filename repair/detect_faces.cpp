@@ -323,19 +323,22 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
     if (!f1.valid() || !f2.valid() || f1 == f2) continue;
     if (b.surface(f1).index() != b.surface(f2).index() || std::holds_alternative<std::monostate>(b.surface(f1))) continue;
-    // Small faces and slivers are removed by their own, earlier repairs (paper 3.2): a
-    // nearly flat chain of small faces is a chain, not also a same-geometry pair.
-    const FaceInfo &i1 = c.face(f1), &i2 = c.face(f2);
-    if (i1.small || i1.sliver || i2.small || i2.sliver) continue;
     auto key = std::minmax(f1, f2);
     if (!done.insert(key).second) continue;
     // The deviation is a maximum over the samples, so any subset bounds it from below:
-    // a face with thousands of rings (a plate under its bosses) is first compared on a
-    // few of its points, and only pairs that pass are compared on all of them. Without
-    // this, every neighbour of such a face paid for all its samples: quadratic.
+    // a face with many samples is first compared on a few of them, and only pairs that
+    // pass are compared on all. Without this, every neighbour of a large face paid for
+    // all its samples: quadratic.
     if (geo::surface_deviation(b.surface(f1), b.surface(f2), coarse(f1), coarse(f2), c.tol.length) > c.tol.length) continue;
     double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2), c.tol.length);
-    if (dev <= c.tol.length) {
+    if (dev > c.tol.length) continue;
+    // Small faces and slivers are removed by their own, earlier repairs (paper 3.2): a
+    // nearly flat chain of small faces is a chain, not also a same-geometry pair. Asked
+    // last: measuring a face's area reads all its loops (a plate's every hole), which
+    // the deviation above has usually made unnecessary.
+    const FaceInfo &i1 = c.face(f1), &i2 = c.face(f2);
+    if (i1.small || i1.sliver || i2.small || i2.sliver) continue;
+    {
       Problem p;
       p.type = ProblemType::same_geometry_faces;
       p.elements = {key.first, key.second};
