@@ -125,6 +125,15 @@ ToleranceSuggestion suggest_tolerance(const Body& b) {
       s.ratio = smallest / floor;
       for (std::size_t i = first; i < sizes.size() && s.intentional.size() < kEvidence; ++i) s.intentional.push_back(sizes[i]);
       s.explanation = "no feature is smaller than " + fmt(probe) + " (5% of the model's size): nothing looks spurious";
+      if (first > 0) {
+        // Defects at the noise level (a sliver a scanner's rounding left) are spurious at
+        // any tolerance, and the suggestion repairs them: say so rather than "nothing".
+        s.below = sizes[first - 1].size;
+        for (std::size_t i = first; i-- > 0 && s.spurious.size() < kEvidence;) s.spurious.push_back(sizes[i]);
+        s.explanation = std::to_string(first) + " size(s) up to " + fmt(s.below) + " are at the noise level (below " +
+                        fmt(floor) + ", 1e-6 of the model's size) and spurious at any tolerance; above them no feature is "
+                        "smaller than " + fmt(probe) + " (5% of the model's size)";
+      }
       return s;
     }
     s.confidence = "none";

@@ -188,6 +188,27 @@ TEST(SuggestTolerance, CleanModelsSuggestNothingSpurious) {
   }
 }
 
+TEST(SuggestTolerance, DefectsAtTheNoiseLevelAreNamedNotDenied) {
+  // A box with one sliver far below a millionth of its size: nothing above the noise
+  // level is small, and the suggestion says what it saw below it.
+  Body b = build::box(10, 10, 10);
+  std::string why;
+  auto injected = zoo::inject(b, ProblemType::sliver_face, 3, std::nullopt, 1e-7, &why);
+  ASSERT_TRUE(injected) << why;
+  const ToleranceSuggestion s = suggest_tolerance(b);
+  EXPECT_EQ(s.confidence, "no defects") << describe(s);
+  ASSERT_FALSE(s.spurious.empty()) << describe(s);
+  EXPECT_LT(s.spurious.front().size, 1e-5) << describe(s);
+  EXPECT_NE(s.explanation.find("noise level"), std::string::npos) << describe(s);
+  EXPECT_GT(s.tolerance, s.below) << describe(s);
+  // ... and the tolerance it suggests finds that face: as a sliver, or, as its area's
+  // root (0.0004) is below the suggestion too, as a small face.
+  bool found = false;
+  for (const Problem& p : detect(b, geo::Tolerances::for_model(s.tolerance, model_size(b))).problems)
+    found = found || p.type == ProblemType::sliver_face || p.type == ProblemType::small_face;
+  EXPECT_TRUE(found) << describe(s);
+}
+
 TEST(SuggestTolerance, NoClearGapIsSaid) {
   // A model whose features have all sizes evenly spread has no gap to trust: a family
   // plate is not that, but an empty body has no evidence at all.
