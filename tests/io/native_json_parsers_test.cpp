@@ -100,6 +100,10 @@ TEST(NativeReaderParsers, AgreeOnJsonCornerCases) {
       // More digits than a 64-bit mantissa holds (simdjson 3.0's get_number() reads them as 0).
       replaced(t, "\"seed\": 7", "\"seed\": 11000.2400000000009212"),
       replaced(t, "\"point\": [0.0", "\"point\": [1.00000000000000000000001"),
+      // ... and far more (simdjson 3.0's portable kernel read this one as 1.4e-88).
+      replaced(t, "\"seed\": 7", "\"seed\": 0." + std::string(108, '4') + "0"),
+      replaced(t, "\"seed\": 7", "\"seed\": " + std::string(300, '9') + ".5"),
+      replaced(t, "\"seed\": 7", "\"seed\": 1." + std::string(400, '0') + "1e-5"),
       // Literals and strings.
       replaced(t, "\"seed\": 7", "\"seed\": nul"), replaced(t, "\"seed\": 7", "\"seed\": truee"),
       replaced(t, "\"seed\": 7", "\"seed\": \"a\\u0000b\""), replaced(t, "\"seed\": 7", "\"seed\": \"\\ud800\""),
