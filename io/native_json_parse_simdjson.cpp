@@ -6,9 +6,8 @@
 
 #include <simdjson.h>
 
+#include <charconv>
 #include <cstdint>
-#include <cstdlib>
-#include <string>
 #include <string_view>
 #include <utility>
 
@@ -165,8 +164,13 @@ class SimdjsonTreeParser {
         if (v.get_double().get(d)) return false;  // also: outside a double
         // simdjson 3.0's portable kernel gets long mantissas wrong (0.444...4 of 110
         // digits read as 1.4e-88: the json_reader fuzz target). Its fast path, up to 19
-        // digits, is exact; a longer number is read as nlohmann reads it, by strtod.
-        if (token.size() > 19) d = std::strtod(std::string(token).c_str(), nullptr);
+        // digits, is exact; a longer number is read by from_chars, correctly rounded as
+        // nlohmann's strtod is, and whatever the locale. Past a double's range (an
+        // underflow simdjson let through) the reference parser decides.
+        if (token.size() > 19) {
+          auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), d);
+          if (ec != std::errc() || end != token.data() + token.size()) return false;
+        }
         b.floating(d);
         return true;
       }
