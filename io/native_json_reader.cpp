@@ -1046,15 +1046,20 @@ class DocumentReader final : public ElementSink {
 };
 
 // The whole reader over text[0, size), with simdjson_padding() readable bytes past the
-// end of the text (`capacity` is the whole buffer).
+// end of the text (`capacity` is the whole buffer). `release` (if given) frees the text:
+// called once it has been parsed, before the body is assembled, so that the text and the
+// body are never in memory together.
 std::optional<NativeDocument> parse_document(const char* text, std::size_t size, std::size_t capacity,
-                                             NativeParser which, std::string* error) {
+                                             NativeParser which, std::string* error,
+                                             const std::function<void()>& release = {}) {
   try {
     if (which == NativeParser::kSimdjsonFirst) {
       DocumentReader reader(error);
       JsonTree root;
-      if (parse_native_simdjson(text, size, capacity, &reader, &root) == FastParse::kDone)
+      if (parse_native_simdjson(text, size, capacity, &reader, &root) == FastParse::kDone) {
+        if (release) release();
         return reader.finish(JsonView(&root, 0));
+      }
     }
     DocumentReader reader(error);
     BoundedDocumentBuilder builder(&reader);
@@ -1062,6 +1067,7 @@ std::optional<NativeDocument> parse_document(const char* text, std::size_t size,
       if (error) *error = builder.error.empty() ? "not valid JSON" : builder.error;
       return std::nullopt;
     }
+    if (release) release();
     return reader.finish(builder.root());
   } catch (const std::exception& e) {
     // Nothing above throws on bad input; this is for running out of memory.
@@ -1160,7 +1166,7 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
   if (text.read_errno) return refuse(std::string("cannot read: ") + std::strerror(text.read_errno));
   if (text.too_large) return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
   std::string why;
-  auto doc = parse_document(text.bytes.get(), text.size, text.capacity, which, &why);
+  auto doc = parse_document(text.bytes.get(), text.size, text.capacity, which, &why, [&] { text.bytes.reset(); });
   if (!doc) return refuse(why);
   return doc;
 }
