@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <thread>
 #include <type_traits>
 
@@ -153,6 +154,24 @@ Detection run(detail::DetectContext& c) {
   return d;
 }
 
+// Which detector finds problems of type t: types with the same number share one.
+int detector_of(ProblemType t) {
+  switch (t) {
+    case ProblemType::face_gap:
+    case ProblemType::edge_gap:
+    case ProblemType::multi_face_gap: return 0;
+    case ProblemType::pinched_face: return 1;
+    case ProblemType::small_face_chain:
+    case ProblemType::sliver_face:
+    case ProblemType::small_face: return 2;
+    case ProblemType::short_edge_chain:
+    case ProblemType::short_edge: return 3;
+    case ProblemType::same_geometry_faces: return 4;
+    case ProblemType::mergeable_edges: return 5;
+  }
+  return -1;
+}
+
 // The detector that finds problems of type t (each finds its types whatever the others
 // found: they share the context's measures only).
 void run_for(detail::DetectContext& c, ProblemType t, std::vector<Problem>& out) {
@@ -185,6 +204,23 @@ Detection detect(const Body& b, const geo::Tolerances& tol) {
   detail::DetectContext c(b, tol, std::move(s), true);
   c.measure_ahead(detect_threads());
   return run(c);
+}
+
+Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types) {
+  detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
+  detail::DetectContext c(b, tol, std::move(s), true);
+  c.measure_ahead(detect_threads());
+  std::vector<Problem> all;
+  std::set<int> ran;
+  for (ProblemType t : types)
+    if (ran.insert(detector_of(t)).second) run_for(c, t, all);
+  Detection d;
+  for (Problem& p : all)
+    if (std::find(types.begin(), types.end(), p.type) != types.end()) d.problems.push_back(std::move(p));
+  std::stable_sort(d.problems.begin(), d.problems.end(),
+                   [](const Problem& a, const Problem& b) { return problem_order(a.type) < problem_order(b.type); });
+  for (const Problem& p : d.problems) d.counts[std::size_t(problem_order(p.type) - 1)]++;
+  return d;
 }
 
 void Neighbourhood::add_face(const Body& b, FaceH f) {

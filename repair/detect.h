@@ -29,6 +29,9 @@ struct Detection {
 };
 
 Detection detect(const Body& b, const geo::Tolerances& tol);
+// detect's problems of the given types only, by running only the detectors that find them
+// (for callers that want a few types: the tolerance suggestion's probe).
+Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types);
 
 // The neighbourhood of touched elements: the faces touched, on a touched edge or around
 // a touched vertex (the core); the edges and vertices of these faces, and the border

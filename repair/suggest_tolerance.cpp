@@ -74,7 +74,10 @@ ToleranceSuggestion suggest_tolerance(const Body& b) {
                                  : SizeEvidence{"face " + f.str() + " (sqrt area)", root});
     if (width < root) readings.push_back({root, width});
   }
-  Detection d = detect(b, geo::Tolerances::for_model(probe, size));
+  // Only the types whose sizes are no single element's (probe_size): the other
+  // detectors would be run at the probe's large tolerance for nothing.
+  Detection d = detect_types(b, geo::Tolerances::for_model(probe, size),
+                             {ProblemType::pinched_face, ProblemType::same_geometry_faces});
   for (const Problem& p : d.problems) {
     const double x = probe_size(p);
     if (x < 0) continue;

@@ -488,5 +488,29 @@ TEST(Detect, OneAndTwoThreadsFindTheSame) {
   }
 }
 
+TEST(Detect, DetectTypesIsDetectOfThoseTypes) {
+  std::vector<std::pair<std::string, zoo::ZooModel>> models;
+  models.emplace_back("family 1500", zoo::family(1500, 0.5, 3));
+  for (int n : {1, 4, 7, 10}) models.emplace_back("paper object " + std::to_string(n), zoo::paper_object(n, false));
+  const std::vector<std::vector<ProblemType>> choices = {
+      {ProblemType::pinched_face, ProblemType::same_geometry_faces},  // the tolerance suggestion's
+      {ProblemType::sliver_face},
+      {ProblemType::short_edge, ProblemType::short_edge_chain, ProblemType::mergeable_edges},
+      {ProblemType::face_gap, ProblemType::small_face}};
+  for (auto& [name, m] : models) {
+    // At the model's tolerance and at a coarse one, where every detector finds more.
+    for (double t : {m.tolerance, 20 * m.tolerance}) {
+      const geo::Tolerances tol = tol_for(m.body, t);
+      const Detection all = detect(m.body, tol);
+      for (const auto& types : choices) {
+        Detection only;
+        for (const Problem& p : all.problems)
+          if (std::find(types.begin(), types.end(), p.type) != types.end()) only.problems.push_back(p);
+        EXPECT_EQ(exact_listing(detect_types(m.body, tol, types)), exact_listing(only)) << name << " at " << t;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace kintsugi
