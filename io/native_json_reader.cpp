@@ -1114,6 +1114,9 @@ struct FileText {
         break;
       }
     }
+    // The padding is only read, never interpreted; spaces keep it so even for a number
+    // at the very end of a broken file.
+    std::memset(bytes.get() + size, ' ', simdjson_padding());
   }
 
  private:
