@@ -41,20 +41,25 @@ double edge_length(const Body& b, EdgeH e) {
   return geo::arc_length(c, r.t0, r.t1);
 }
 
+namespace {
+
+// One loop as a closed polyline (its first point not repeated), appended to `pts`.
+void append_loop(const Body& b, LoopH l, double chordal, std::vector<geo::Vec3>& pts) {
+  if (b.is_lone(l)) {
+    pts.push_back(b.point(b.lone_vertex(l)));
+    return;
+  }
+  for (HalfedgeH h : b.loop_halfedges(l)) {
+    std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
+    pts.insert(pts.end(), seg.begin(), seg.end() - 1);  // the end is the next one's start
+  }
+}
+
+}  // namespace
+
 std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal) {
   std::vector<std::vector<geo::Vec3>> loops;
-  for (LoopH l : b.loops_of(f)) {
-    std::vector<geo::Vec3> pts;
-    if (b.is_lone(l)) {
-      pts.push_back(b.point(b.lone_vertex(l)));
-    } else {
-      for (HalfedgeH h : b.loop_halfedges(l)) {
-        std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
-        pts.insert(pts.end(), seg.begin(), seg.end() - 1);  // the end is the next one's start
-      }
-    }
-    loops.push_back(std::move(pts));
-  }
+  for (LoopH l : b.loops_of(f)) append_loop(b, l, chordal, loops.emplace_back());
   return loops;
 }
 
@@ -62,14 +67,7 @@ std::vector<geo::Vec3> surface_samples(const Body& b, FaceH f, double chordal) {
   std::vector<geo::Vec3> pts;
   const bool planar = std::holds_alternative<geo::Plane>(b.surface(f));
   for (LoopH l : b.loops_of(f)) {
-    if (b.is_lone(l)) {
-      pts.push_back(b.point(b.lone_vertex(l)));
-    } else {
-      for (HalfedgeH h : b.loop_halfedges(l)) {
-        std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
-        pts.insert(pts.end(), seg.begin(), seg.end() - 1);
-      }
-    }
+    append_loop(b, l, chordal, pts);
     if (planar) break;  // the outer loop comes first
   }
   return pts;

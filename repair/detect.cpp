@@ -140,18 +140,25 @@ void DetectContext::measure_ahead(int threads) {
 
 namespace {
 
-Detection run(detail::DetectContext& c) {
+// The problems in the paper's order of types, counted by type.
+Detection in_order(std::vector<Problem> problems) {
   Detection d;
-  detail::detect_gaps(c, d.problems);
-  detail::detect_pinched(c, d.problems);
-  detail::detect_small_and_sliver(c, d.problems);
-  detail::detect_short_edges(c, d.problems);
-  detail::detect_same_geometry(c, d.problems);
-  detail::detect_mergeable(c, d.problems);
+  d.problems = std::move(problems);
   std::stable_sort(d.problems.begin(), d.problems.end(),
                    [](const Problem& a, const Problem& b) { return problem_order(a.type) < problem_order(b.type); });
   for (const Problem& p : d.problems) d.counts[std::size_t(problem_order(p.type) - 1)]++;
   return d;
+}
+
+Detection run(detail::DetectContext& c) {
+  std::vector<Problem> all;
+  detail::detect_gaps(c, all);
+  detail::detect_pinched(c, all);
+  detail::detect_small_and_sliver(c, all);
+  detail::detect_short_edges(c, all);
+  detail::detect_same_geometry(c, all);
+  detail::detect_mergeable(c, all);
+  return in_order(std::move(all));
 }
 
 // Which detector finds problems of type t: types with the same number share one.
@@ -175,18 +182,13 @@ int detector_of(ProblemType t) {
 // The detector that finds problems of type t (each finds its types whatever the others
 // found: they share the context's measures only).
 void run_for(detail::DetectContext& c, ProblemType t, std::vector<Problem>& out) {
-  switch (t) {
-    case ProblemType::face_gap:
-    case ProblemType::edge_gap:
-    case ProblemType::multi_face_gap: detail::detect_gaps(c, out); break;
-    case ProblemType::pinched_face: detail::detect_pinched(c, out); break;
-    case ProblemType::small_face_chain:
-    case ProblemType::sliver_face:
-    case ProblemType::small_face: detail::detect_small_and_sliver(c, out); break;
-    case ProblemType::short_edge_chain:
-    case ProblemType::short_edge: detail::detect_short_edges(c, out); break;
-    case ProblemType::same_geometry_faces: detail::detect_same_geometry(c, out); break;
-    case ProblemType::mergeable_edges: detail::detect_mergeable(c, out); break;
+  switch (detector_of(t)) {
+    case 0: detail::detect_gaps(c, out); break;
+    case 1: detail::detect_pinched(c, out); break;
+    case 2: detail::detect_small_and_sliver(c, out); break;
+    case 3: detail::detect_short_edges(c, out); break;
+    case 4: detail::detect_same_geometry(c, out); break;
+    case 5: detail::detect_mergeable(c, out); break;
   }
 }
 
@@ -210,17 +212,13 @@ Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vec
   detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
   detail::DetectContext c(b, tol, std::move(s), true);
   c.measure_ahead(detect_threads());
-  std::vector<Problem> all;
+  std::vector<Problem> all, wanted;
   std::set<int> ran;
   for (ProblemType t : types)
     if (ran.insert(detector_of(t)).second) run_for(c, t, all);
-  Detection d;
   for (Problem& p : all)
-    if (std::find(types.begin(), types.end(), p.type) != types.end()) d.problems.push_back(std::move(p));
-  std::stable_sort(d.problems.begin(), d.problems.end(),
-                   [](const Problem& a, const Problem& b) { return problem_order(a.type) < problem_order(b.type); });
-  for (const Problem& p : d.problems) d.counts[std::size_t(problem_order(p.type) - 1)]++;
-  return d;
+    if (std::find(types.begin(), types.end(), p.type) != types.end()) wanted.push_back(std::move(p));
+  return in_order(std::move(wanted));
 }
 
 void Neighbourhood::add_face(const Body& b, FaceH f) {
