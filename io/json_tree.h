@@ -97,9 +97,6 @@ class JsonTreeBuilder {
   std::uint32_t open_array() { return open(JsonTree::Kind::kArray); }
   std::uint32_t open_object() { return open(JsonTree::Kind::kObject); }
   void close() { stack_.pop_back(); }
-  std::size_t depth() const { return stack_.size(); }
-  // The number of children of the innermost container so far.
-  std::uint32_t count() const { return stack_.empty() ? 0 : tree_->node(stack_.back().node).v.c.count; }
 
  private:
   struct Open {
