@@ -24,12 +24,13 @@
 //     Last line: JSON {"faces", "bytes", "model_seconds", "model_rss_bytes", "steps":
 //     {step: {"seconds", "peak_rss_bytes"}}, "read_back_equal"}.
 //
-//   kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S]
+//   kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--detect-only]
 //     Detection and beautify on the scalable family (zoo::family; default sizes 10^4 and
 //     10^5 faces, rate 0.01, seed 1), each size in a child process of its own: the model
-//     is built, detected (timed) and beautified as `kintsugi beautify` does it (the
-//     pipeline with the whole-body check once at the end, not after every repair;
-//     without OpenCASCADE's half of the validity gate, which the bench does not link).
+//     is built, detected (timed) and beautified as `kintsugi beautify` does it
+//     (api::beautify: the pipeline with the whole-body check once at the end and the
+//     validity gate's OpenCASCADE half where it is built). --detect-only stops after
+//     the detection.
 //     Prints per size the seconds of detection, of beautify and of each pass, the peak
 //     resident set size against the size after building the model; then the exponent
 //     of a least-squares fit of log(seconds) on log(faces). Last line: JSON {"sizes":
@@ -82,11 +83,12 @@ int usage(std::ostream& os, int code) {
         "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
         "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
         "          prints each step's time and peak memory (each step runs in a child process).\n"
-        "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S]\n"
+        "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--detect-only]\n"
         "  beautify  Detects and beautifies the scalable family at each size (default\n"
         "          10000,100000; rate 0.01), each in a child process, as `kintsugi beautify`\n"
         "          does (the validity gate with OpenCASCADE's half where it is built); prints\n"
         "          seconds per pass, peak memory and the fitted exponent of time against faces.\n"
+        "          --detect-only  time the whole-model detection only\n"
         "       kintsugi-bench occt-heal [--faces N] [--rate R] [--seed S] [--dir D]\n"
         "  occt-heal  Writes the family with N faces (default 10000; rate 0.01) to STEP in D\n"
         "          (default the temporary folder; kept there and reused) and heals it twice, each in\n"
@@ -214,6 +216,7 @@ int bench_beautify(int argc, char** argv) {
   std::vector<long long> sizes{10'000, 100'000};
   long long seed = 1;
   double rate = 0.01;
+  bool detect_only = false;
   for (int i = 2; i < argc; ++i) {
     std::string a = argv[i];
     auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -249,6 +252,8 @@ int bench_beautify(int argc, char** argv) {
         std::cerr << "kintsugi-bench beautify: --rate needs a number from 0 to 1\n";
         return 2;
       }
+    } else if (a == "--detect-only") {
+      detect_only = true;
     } else if (a == "--help") {
       return usage(std::cout, 0);
     } else {
@@ -274,6 +279,7 @@ int bench_beautify(int argc, char** argv) {
       const Detection d = detect(m.body, tol);
       j["detect_seconds"] = seconds_since(t0);
       j["problems"] = d.problems.size();
+      if (detect_only) return j;
       // The CLI's own path (apps/api.h): the validity gate with OpenCASCADE's half where
       // it is built, the whole-body check once at the end; its report's seconds.
       api::Model model{std::move(m.body), m.meta(), "mm", "json"};
@@ -291,6 +297,15 @@ int bench_beautify(int argc, char** argv) {
       failed = true;
       continue;
     }
+    if (detect_only) {
+      std::cout << r["faces"] << " faces: detect " << r["detect_seconds"] << " s (" << r["problems"]
+                << " problems), peak RSS " << r["peak_rss_bytes"].get<double>() / 1e6 << " MB (model "
+                << r["model_rss_bytes"].get<double>() / 1e6 << " MB)\n";
+      faces.push_back(r["faces"].get<double>());
+      detect_s.push_back(r["detect_seconds"].get<double>());
+      out["sizes"].push_back(r);
+      continue;
+    }
     std::cout << r["faces"] << " faces: detect " << r["detect_seconds"] << " s (" << r["problems"]
               << " problems), beautify " << r["beautify_seconds"] << " s (" << r["repaired"] << " repaired, "
               << r["not_repaired"] << " not), peak RSS " << r["peak_rss_bytes"].get<double>() / 1e6 << " MB (model "
@@ -302,7 +317,10 @@ int bench_beautify(int argc, char** argv) {
     beautify_s.push_back(r["beautify_seconds"].get<double>());
     out["sizes"].push_back(r);
   }
-  if (faces.size() >= 2) {
+  if (faces.size() >= 2 && detect_only) {
+    out["exponent"] = {{"detect", loglog_slope(faces, detect_s)}};
+    std::cout << "exponent (least squares of log s on log faces): detect " << out["exponent"]["detect"] << "\n";
+  } else if (faces.size() >= 2) {
     out["exponent"] = {{"detect", loglog_slope(faces, detect_s)}, {"beautify", loglog_slope(faces, beautify_s)}};
     std::cout << "exponent (least squares of log s on log faces): detect " << out["exponent"]["detect"] << ", beautify "
               << out["exponent"]["beautify"] << "\n";

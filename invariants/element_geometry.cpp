@@ -30,6 +30,27 @@ std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chor
   return pts;
 }
 
+geo::Box halfedge_box(const Body& b, HalfedgeH h, double chordal) {
+  geo::Box box;
+  box.add(b.point(b.origin(h)));
+  box.add(b.point(b.target(h)));
+  const geo::Curve& c = b.curve(edge_of(h));
+  if (std::holds_alternative<std::monostate>(c) || std::holds_alternative<geo::Line>(c)) return box;
+  if (const auto* circle = std::get_if<geo::Circle>(&c)) {
+    // The circle's extent along axis i is r·sin of the angle between its normal and the
+    // axis: r·sqrt(1 - n_i²) (widened by a rounding's worth: the samples are evaluated).
+    const geo::Vec3 n = circle->frame.z.normalized();
+    const geo::Vec3 half = (1 + 1e-12) * circle->radius * (geo::Vec3::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
+    if (half.allFinite()) {
+      box.add(circle->frame.origin - half);
+      box.add(circle->frame.origin + half);
+      return box;
+    }
+  }
+  for (const geo::Vec3& p : halfedge_polyline(b, h, chordal)) box.add(p);
+  return box;
+}
+
 double edge_length(const Body& b, EdgeH e) {
   HalfedgeH h = halfedge_of(e, 0);
   const geo::Curve& c = b.curve(e);

@@ -18,6 +18,10 @@ namespace kintsugi {
 
 // Points along the edge of h, from origin(h) to target(h), both included.
 std::vector<geo::Vec3> halfedge_polyline(const Body& b, HalfedgeH h, double chordal);
+// A box containing halfedge_polyline(b, h, chordal), found without sampling where the
+// curve allows (a line's ends; a circle's box with the ends, whose samples between lie
+// on the circle); the polyline's own box otherwise.
+geo::Box halfedge_box(const Body& b, HalfedgeH h, double chordal);
 double edge_length(const Body& b, EdgeH e);
 // The face's loops as closed polylines (outer first), for geo::measure_region.
 std::vector<std::vector<geo::Vec3>> face_boundary(const Body& b, FaceH f, double chordal);

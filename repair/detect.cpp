@@ -35,24 +35,35 @@ FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double
   return fi;
 }
 
-// Most faces are far from small and far from thin: a boundary sampled at 0.05 · length
-// tells them apart as surely as one at 0.001 · length, with a seventh of the points
-// (each projected onto the surface, then triangulated). The sampled boundary lies within
-// the chordal error e of the true one, so a measure moves by at most the perimeter P
-// times e in area and 2√3·e in the box diagonal; with a factor 4 for the parameter
-// plane's distortion of the chords, a coarse area A and diagonal d with
+// Most faces are far from small and far from thin: a boundary sampled coarsely tells
+// them apart as surely as one at 0.001 · length, with far fewer points (each projected
+// onto the surface, then triangulated). The sampled boundary lies within the chordal
+// error e of the true one, so a measure moves by at most the perimeter P times e in area
+// and 2√3·e in the box diagonal; with a factor 4 for the parameter plane's distortion of
+// the chords, a coarse area A and diagonal d with
 //   A − 4P(e + e_fine) ≥ length²   and   (A − 4P(e + e_fine)) / (d + 4(e + e_fine)) ≥ length
 // mean the fine measure finds the face neither small nor a sliver. Any other face (and
 // every face reported, whose measure the report shows) is measured again finely.
+// e is 0.05 · length, or P / (400 · loops) where that is larger: a face far larger than
+// the tolerance is then sampled with a number of points that depends on its shape, not
+// on the tolerance (a boss's circle at a fine tolerance took hundreds), and the bound
+// above still holds with room (for one loop, 4P·P/400 is a sixth of a square's area;
+// dividing by the loops keeps a plate's many rings from widening it). Both scale with
+// the model, so scaling model and tolerance together changes nothing.
 FaceInfo DetectContext::measure(FaceH f) const {
-  const double coarse = tol.coarse_measure_chordal();
-  if (coarse > chordal) {
+  double perimeter = 0.0;
+  std::size_t loops = 0;
+  for (LoopH l : b.loops_of(f)) {
+    ++loops;
+    if (!b.is_lone(l))
+      for (HalfedgeH h : b.loop_halfedges(l)) perimeter += edge_length(edge_of(h));
+  }
+  constexpr double kPerimeterShare = 400;
+  const double coarse =
+      std::max(tol.coarse_measure_chordal(), perimeter / (kPerimeterShare * double(std::max<std::size_t>(1, loops))));
+  if (coarse > chordal && std::isfinite(coarse)) {
     std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse);
     if (m) {
-      double perimeter = 0.0;
-      for (LoopH l : b.loops_of(f))
-        if (!b.is_lone(l))
-          for (HalfedgeH h : b.loop_halfedges(l)) perimeter += edge_length(edge_of(h));
       const double e = coarse + chordal;
       const double area_lo = m->area - 4 * perimeter * e;
       const double diagonal_hi = m->bounds.diagonal() + 4 * e;
@@ -118,6 +129,7 @@ void DetectContext::measure_ahead(int threads) {
   std::vector<EdgeH> edges;
   for (EdgeH e : scope.edges)
     if (!geo::is_freeform(b.curve(e))) edges.push_back(e);
+  bool all_analytic = edges.size() == scope.edges.size();
   // Every analytic edge's length first (the faces' measures below read them, and none is
   // written while those threads run).
   in_blocks(edges.size(), edges.size() >= kMinElements ? threads : 1,
@@ -128,12 +140,17 @@ void DetectContext::measure_ahead(int threads) {
     for (LoopH l : b.loops_of(f))
       for (HalfedgeH h : b.loop_halfedges(l)) analytic = analytic && !geo::is_freeform(b.curve(edge_of(h)));
     if (analytic) faces.push_back(f);
+    all_analytic = all_analytic && analytic;
   }
   if (faces.size() < kMinElements) return;
   in_blocks(faces.size(), threads, [&](std::size_t i) {
     face_dense_[faces[i].idx()] = measure(faces[i]);
     face_done_[faces[i].idx()] = 1;
   });
+  // Every face and edge measured (the detectors' walks read the measures of elements
+  // across the scope's edges too, which a whole-body scope holds): from here on the
+  // context is only read.
+  if (all_analytic) detector_threads_ = threads;
 }
 
 }  // namespace detail
@@ -150,13 +167,51 @@ Detection in_order(std::vector<Problem> problems) {
   return d;
 }
 
+// Runs detector(c, out, block) over `items` split into contiguous blocks, one per thread
+// the context allows, and appends the blocks' problems in block order: what one thread
+// over all of `items` would find, in the same order.
+template <class H, class Detector>
+void in_blocks_of(detail::DetectContext& c, const std::vector<H>& items, const Detector& detector,
+                  std::vector<Problem>& out) {
+  const std::size_t t = std::size_t(std::max(1, c.threads_for_detectors()));
+  if (t == 1) {
+    detector(c, out, std::span<const H>(items));
+    return;
+  }
+  std::vector<std::vector<Problem>> found(t);
+  auto block = [&](std::size_t k) {
+    const std::size_t lo = items.size() * k / t, hi = items.size() * (k + 1) / t;
+    detector(c, found[k], std::span<const H>(items).subspan(lo, hi - lo));
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < t; ++k) pool.emplace_back(block, k);
+  block(0);
+  for (std::thread& th : pool) th.join();
+  for (std::vector<Problem>& f : found) out.insert(out.end(), std::make_move_iterator(f.begin()), std::make_move_iterator(f.end()));
+}
+
+void pinched(detail::DetectContext& c, std::vector<Problem>& out) {
+  in_blocks_of(c, c.scope.faces, [](auto& cc, auto& o, std::span<const FaceH> fs) { detail::detect_pinched(cc, o, fs); }, out);
+}
+
+// A pair of faces with several common edges may be found in two blocks: kept where the
+// first block found it, as one thread would.
+void same_geometry(detail::DetectContext& c, std::vector<Problem>& out) {
+  std::vector<Problem> found;
+  in_blocks_of(c, c.scope.edges, [](auto& cc, auto& o, std::span<const EdgeH> es) { detail::detect_same_geometry(cc, o, es); },
+               found);
+  std::set<std::vector<Element>> seen;
+  for (Problem& p : found)
+    if (seen.insert(p.elements).second) out.push_back(std::move(p));
+}
+
 Detection run(detail::DetectContext& c) {
   std::vector<Problem> all;
   detail::detect_gaps(c, all);
-  detail::detect_pinched(c, all);
+  pinched(c, all);
   detail::detect_small_and_sliver(c, all);
   detail::detect_short_edges(c, all);
-  detail::detect_same_geometry(c, all);
+  same_geometry(c, all);
   detail::detect_mergeable(c, all);
   return in_order(std::move(all));
 }
@@ -184,10 +239,10 @@ int detector_of(ProblemType t) {
 void run_for(detail::DetectContext& c, ProblemType t, std::vector<Problem>& out) {
   switch (detector_of(t)) {
     case 0: detail::detect_gaps(c, out); break;
-    case 1: detail::detect_pinched(c, out); break;
+    case 1: pinched(c, out); break;
     case 2: detail::detect_small_and_sliver(c, out); break;
     case 3: detail::detect_short_edges(c, out); break;
-    case 4: detail::detect_same_geometry(c, out); break;
+    case 4: same_geometry(c, out); break;
     case 5: detail::detect_mergeable(c, out); break;
   }
 }

@@ -9,6 +9,7 @@
 #include "problems/problem.h"
 
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -77,11 +78,16 @@ class DetectContext {
   // geometry (free-form evaluation keeps per-surface state: those are measured when
   // first asked, as before). The answers are the ones face() and edge_length() would give.
   void measure_ahead(int threads);
+  // How many threads the detectors may share after measure_ahead: more than one only
+  // when it measured every face and edge of the scope (then face() and edge_length()
+  // only read) and no element is free-form (whose evaluation keeps state); else 1.
+  int threads_for_detectors() const { return detector_threads_; }
   Marks marks_edges() const { return Marks(b.edge_slots(), whole); }
 
  private:
   FaceInfo measure(FaceH f) const;  // coarse first, finely where that cannot decide
 
+  int detector_threads_ = 1;
   mutable std::vector<FaceInfo> face_dense_;
   mutable std::vector<std::uint8_t> face_done_;
   mutable std::vector<double> length_dense_;
@@ -94,9 +100,14 @@ class DetectContext {
 std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vector<HalfedgeH>& hs);
 
 void detect_gaps(DetectContext& c, std::vector<Problem>& out);
+// Pinching and same geometry are found face by face and edge by edge, the largest parts
+// of a detection: each also takes a part of the scope (a block of a whole-body
+// detection run on its own thread; see DetectContext::threads_for_detectors).
+void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const FaceH> faces);
 void detect_pinched(DetectContext& c, std::vector<Problem>& out);
 void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out);  // types 5, 6, 9
 void detect_short_edges(DetectContext& c, std::vector<Problem>& out);       // types 7, 11
+void detect_same_geometry(DetectContext& c, std::vector<Problem>& out, std::span<const EdgeH> edges);
 void detect_same_geometry(DetectContext& c, std::vector<Problem>& out);
 void detect_mergeable(DetectContext& c, std::vector<Problem>& out);
 

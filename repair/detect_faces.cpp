@@ -156,38 +156,54 @@ std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vect
 
 }  // namespace
 
-void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
+void detect_pinched(DetectContext& c, std::vector<Problem>& out) { detect_pinched(c, out, c.scope.faces); }
+
+void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const FaceH> faces) {
   const Body& b = c.b;
   const double t = c.tol.length;
-  for (FaceH f : c.scope.faces) {
+  struct Side {
+    std::size_t loop, pos;
+    HalfedgeH h;
+  };
+  // Reused from face to face: most faces have four sides, and allocating for each was
+  // a visible part of the time.
+  std::vector<Side> sides;
+  std::vector<geo::Box> boxes;
+  std::vector<std::vector<geo::Vec3>> polys;  // by side, sampled on first use
+  std::vector<double> prefix;  // per loop: length of the loop's half-edges before each pos, then the total
+  std::vector<std::size_t> loop_start;  // where each loop's run of prefix starts
+  for (FaceH f : faces) {
     const FaceInfo& fi = c.face(f);
     if (!fi.measured || fi.small || fi.sliver) continue;
-    // Every half-edge of the face, loop by loop, with its polyline and bounding box.
-    struct Side {
-      std::size_t loop, pos;
-      HalfedgeH h;
-      std::vector<geo::Vec3> poly;
-    };
-    std::vector<Side> sides;
-    std::vector<geo::Box> boxes;
-    std::vector<std::vector<double>> prefix;  // per loop: length of the half-edges before pos
+    // Every half-edge of the face, loop by loop, with a box around its polyline. The
+    // polylines themselves are sampled only for the pairs that get past the tests below:
+    // most pairs whose boxes meet are consecutive sides, and sampling every side (every
+    // boss's circle on a plate) was most of detection's time.
+    sides.clear();
+    boxes.clear();
+    prefix.clear();
+    loop_start.clear();
     // Edges along a gap go when the gap is closed (passes 1-3, before pinching): they
     // are not pinched, and a stretch of them joins its neighbours as if it had no length.
     auto gap_side = [&](HalfedgeH h) { return b.is_border(twin(h)); };
     auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length(edge_of(h)); };
     for (LoopH l : b.loops_of(f)) {
-      std::vector<HalfedgeH> hs = b.loop_halfedges(l);
-      prefix.emplace_back(1, 0.0);
-      for (std::size_t i = 0; i < hs.size(); ++i) {
-        prefix.back().push_back(prefix.back().back() + len(hs[i]));
-        Side s{prefix.size() - 1, i, hs[i], halfedge_polyline(b, hs[i], c.chordal)};
-        geo::Box box;
-        if (!gap_side(hs[i]))
-          for (const geo::Vec3& p : s.poly) box.add(p);
-        sides.push_back(std::move(s));
-        boxes.push_back(box);
+      const std::size_t loop = loop_start.size();
+      loop_start.push_back(prefix.size());
+      prefix.push_back(0.0);
+      std::size_t i = 0;
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        prefix.push_back(prefix.back() + len(h));
+        sides.push_back({loop, i++, h});
+        boxes.push_back(gap_side(h) ? geo::Box{} : halfedge_box(b, h, c.chordal));
       }
     }
+    loop_start.push_back(prefix.size());
+    polys.assign(sides.size(), {});
+    auto poly = [&](std::size_t i) -> const std::vector<geo::Vec3>& {
+      if (polys[i].empty()) polys[i] = halfedge_polyline(b, sides[i].h, c.chordal);  // never empty once made
+      return polys[i];
+    };
     std::vector<ClosePair> pairs;
     auto consider = [&](const std::vector<geo::Vec3>& pa, const std::vector<geo::Vec3>& pb, HalfedgeH x, HalfedgeH y,
                         PinchLocation where) {
@@ -204,11 +220,11 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
         // An inner loop close to the outer loop (or to another ring); loops touching at a
         // vertex are not compared.
         if (share_vertex(b, A.h, B.h)) continue;
-        consider(A.poly, B.poly, A.h, B.h, PinchLocation::bossing);
+        consider(poly(p), poly(q), A.h, B.h, PinchLocation::bossing);
         continue;
       }
-      const std::vector<double>& pre = prefix[A.loop];
-      const std::size_t n = pre.size() - 1, i = A.pos, j = B.pos;  // i < j: sides are in loop order
+      const double* pre = &prefix[loop_start[A.loop]];
+      const std::size_t n = loop_start[A.loop + 1] - loop_start[A.loop] - 1, i = A.pos, j = B.pos;  // i < j: loop order
       if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // consecutive
       // The boundary between them: after A up to B, and after B round to A.
       const double l1 = pre[j] - pre[i + 1], l2 = pre[n] - (pre[j + 1] - pre[i]);
@@ -236,7 +252,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
       if (touch && !(std::holds_alternative<geo::Line>(b.curve(edge_of(A.h))) &&
                      std::holds_alternative<geo::Line>(b.curve(edge_of(B.h)))))
         continue;
-      std::vector<geo::Vec3> pa = A.poly, pb = B.poly;
+      std::vector<geo::Vec3> pa = poly(p), pb = poly(q);
       for (int x = 0; x < 2; ++x) {
         if (cut_a[x]) pa = trim(pa, t, x == 0);
         if (cut_b[x]) pb = trim(pb, t, x == 0);
@@ -297,7 +313,10 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out) {
   }
 }
 
-void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
+void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) { detect_same_geometry(c, out, c.scope.edges); }
+
+// Each pair of faces is reported once, at the first of its common edges in `edges`.
+void detect_same_geometry(DetectContext& c, std::vector<Problem>& out, std::span<const EdgeH> edges) {
   const Body& b = c.b;
   std::set<std::pair<FaceH, FaceH>> done;
   // Each face's boundary samples, made once however many neighbours it is compared with.
@@ -319,7 +338,20 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     }
     return out;
   };
-  for (EdgeH e : c.scope.edges) {
+  // At most 16 vertices of the face's first (outer) loop, spread along it.
+  std::vector<geo::Vec3> corners1, corners2;
+  auto corners = [&](FaceH f, std::vector<geo::Vec3>& pts) {
+    pts.clear();
+    const LoopH l = b.outer_loop(f);
+    if (b.is_lone(l)) {
+      pts.push_back(b.point(b.lone_vertex(l)));
+      return;
+    }
+    const std::vector<HalfedgeH> hs = b.loop_halfedges(l);
+    const std::size_t step = std::max<std::size_t>(1, hs.size() / 16);
+    for (std::size_t i = 0; i < hs.size(); i += step) pts.push_back(b.point(b.origin(hs[i])));
+  };
+  for (EdgeH e : edges) {
     FaceH f1 = b.face(halfedge_of(e, 0)), f2 = b.face(halfedge_of(e, 1));
     if (!f1.valid() || !f2.valid() || f1 == f2) continue;
     if (b.surface(f1).index() != b.surface(f2).index() || std::holds_alternative<std::monostate>(b.surface(f1))) continue;
@@ -329,6 +361,11 @@ void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) {
     // a face with many samples is first compared on a few of them, and only pairs that
     // pass are compared on all. Without this, every neighbour of a large face paid for
     // all its samples: quadratic.
+    // First on a few corners of the outer loops (vertices are samples: the polylines are
+    // pinned to them), which needs no sampling at all: most neighbours meet at an angle.
+    corners(f1, corners1);
+    corners(f2, corners2);
+    if (geo::surface_deviation(b.surface(f1), b.surface(f2), corners1, corners2, c.tol.length) > c.tol.length) continue;
     if (geo::surface_deviation(b.surface(f1), b.surface(f2), coarse(f1), coarse(f2), c.tol.length) > c.tol.length) continue;
     double dev = geo::surface_deviation(b.surface(f1), b.surface(f2), samples(f1), samples(f2), c.tol.length);
     if (dev > c.tol.length) continue;

@@ -1,5 +1,7 @@
 // Measures on kernel elements against closed forms.
 #include "geometry/curve.h"
+#include "geometry/transform.h"
+#include "kernel/euler.h"
 #include "invariants/element_geometry.h"
 #include "kernel/builders.h"
 
@@ -101,6 +103,48 @@ RC_GTEST_PROP(ElementGeometry, AreaAndLengthScaleWithTheModel, ()) {
   for (EdgeH e : a.edges()) len_a += edge_length(a, e);
   for (EdgeH e : b.edges()) len_b += edge_length(b, e);
   RC_ASSERT(std::abs(len_b / k - len_a) < 1e-9 * len_a);
+}
+
+// halfedge_box holds every point of halfedge_polyline, whatever the curve and however
+// the solid is turned: full circles, arcs cut from them, lines, and the sampled rest.
+// (Detection's pinch search pairs sides by these boxes before sampling them: a box too
+// small would lose a pinch.)
+RC_GTEST_PROP(ElementGeometry, HalfedgeBoxHoldsTheHalfedgesPolyline, ()) {
+  const int kind = *rc::gen::inRange(0, 5);
+  Body b = kind == 0 ? build::cylinder(1.5, 2)
+         : kind == 1 ? build::cone(1.5, 2)
+         : kind == 2 ? build::sphere(1.5)
+         : kind == 3 ? build::torus(3, 1)
+                     : build::box(1, 2, 3);
+  // Cut every curved edge at a random place on it: arcs, not only full circles.
+  for (EdgeH e : b.edges()) {
+    const geo::Curve& c = b.curve(e);
+    if (std::holds_alternative<geo::Line>(c) || std::holds_alternative<std::monostate>(c)) continue;
+    const double at = double(*rc::gen::inRange(1, 1000)) / 1000.0;
+    const HalfedgeH h = halfedge_of(e, 0);
+    const std::vector<geo::Vec3> poly = halfedge_polyline(b, h, 1e-3);
+    const geo::Vec3 p = geo::closest_point(c, poly[std::size_t(at * double(poly.size() - 1))]).point;
+    if (!euler::semv(b, h, p)) RC_FAIL("semv refused");
+  }
+  Eigen::Quaterniond q(double(*rc::gen::inRange(-100, 101)), double(*rc::gen::inRange(-100, 101)),
+                       double(*rc::gen::inRange(-100, 101)), double(*rc::gen::inRange(-100, 101)));
+  RC_PRE(q.norm() > 1.0);
+  q.normalize();
+  geo::Similarity s;
+  s.rotation = q.toRotationMatrix();
+  s.scale = *rc::gen::element(0.01, 1.0, 300.0);
+  s.translation = geo::Vec3(*rc::gen::inRange(-500, 500), *rc::gen::inRange(-500, 500), 7.0);
+  for (VertexH v : b.vertices()) b.set_point(v, s.point(b.point(v)));
+  for (EdgeH e : b.edges()) b.set_curve(e, geo::transformed(b.curve(e), s));
+  for (FaceH f : b.faces()) b.set_surface(f, geo::transformed(b.surface(f), s), b.same_sense(f));
+  const double chordal = *rc::gen::element(1e-4, 1e-2, 0.3) * s.scale;
+  for (EdgeH e : b.edges())
+    for (unsigned k = 0; k < 2; ++k) {
+      const HalfedgeH h = halfedge_of(e, k);
+      const geo::Box box = halfedge_box(b, h, chordal);
+      for (const geo::Vec3& p : halfedge_polyline(b, h, chordal))
+        RC_ASSERT(box.contains(p, 1e-12 * s.scale));
+    }
 }
 
 }  // namespace
