@@ -456,8 +456,11 @@ TEST(Detect, AChainCutByARepairIsFoundAgainInItsPieces) {
 }
 
 // A whole-body detection measures faces and edges ahead on several threads
-// (repair/detect_threads.h): the problems, their elements and their measures to the last
-// bit are those of one thread. Models above the size where threads start (512 faces).
+// (repair/detect_threads.h) and then finds pinches and same-geometry pairs on them, in
+// blocks of faces and edges: the problems, their order, their elements and their
+// measures to the last bit are those of one thread. Models above the size where threads
+// start (512 faces), with same-geometry defects; at 20 times their tolerance too, where
+// the bosses' rings pinch the plate everywhere.
 std::string exact_listing(const Detection& d) {
   std::string s;
   char buf[64];
@@ -473,19 +476,22 @@ TEST(Detect, OneAndTwoThreadsFindTheSame) {
   std::vector<std::pair<std::string, zoo::ZooModel>> models;
   models.emplace_back("family 3000", zoo::family(3000, 0.1, 5));
   models.emplace_back("family 2000", zoo::family(2000, 0.3, 9));
-  for (auto& [name, m] : models) {
-    const geo::Tolerances tol = tol_for(m.body, m.tolerance);
-    set_detect_threads(1);
-    const std::string one = exact_listing(detect(m.body, tol));
-    set_detect_threads(2);
-    const std::string two = exact_listing(detect(m.body, tol));
-    set_detect_threads(3);
-    const std::string three = exact_listing(detect(m.body, tol));
-    set_detect_threads(0);
-    EXPECT_FALSE(one.empty()) << name;
-    EXPECT_EQ(one, two) << name;
-    EXPECT_EQ(one, three) << name;
-  }
+  for (auto& [name, m] : models)
+    for (double t : {m.tolerance, 20 * m.tolerance}) {
+      const geo::Tolerances tol = tol_for(m.body, t);
+      set_detect_threads(1);
+      const std::string one = exact_listing(detect(m.body, tol));
+      set_detect_threads(2);
+      const std::string two = exact_listing(detect(m.body, tol));
+      set_detect_threads(3);
+      const std::string three = exact_listing(detect(m.body, tol));
+      set_detect_threads(0);
+      EXPECT_FALSE(one.empty()) << name;
+      EXPECT_EQ(one, two) << name << " at " << t;
+      EXPECT_EQ(one, three) << name << " at " << t;
+      // Both detectors that run in blocks have something to find.
+      EXPECT_NE(one.find(t > m.tolerance ? "pinched_face" : "same_geometry_faces"), std::string::npos) << name;
+    }
 }
 
 TEST(Detect, DetectTypesIsDetectOfThoseTypes) {
