@@ -26,15 +26,23 @@ struct Run {
   double precision;
   GeometryReport r;
 
-  void deviation(double d, const char* inv, std::vector<std::string> els, const std::string& what) {
+  // x and y name the elements: "x from the surface of y" (`from`) says what was
+  // measured. The names are spelled only for a new largest deviation or a violation:
+  // spelling them for every vertex and edge was most of a whole-body check's time.
+  template <class X, class Y>
+  void deviation(double d, const char* inv, X x, Y y, const char* from) {
     if (!std::isfinite(d)) d = HUGE_VAL;
-    if (d > r.max_deviation || r.max_elements.empty()) {
-      if (d >= r.max_deviation) {
-        r.max_deviation = d;
-        r.max_elements = els;
-      }
+    const bool largest = (d > r.max_deviation || r.max_elements.empty()) && d >= r.max_deviation;
+    const bool violation = d > precision;
+    if (!largest && !violation) return;
+    std::vector<std::string> els{x.str(), y.str()};
+    if (largest) {
+      r.max_deviation = d;
+      r.max_elements = els;
     }
-    if (d > precision) r.violations.push_back({inv, std::move(els), what + " is " + fmt(d) + " away (precision " + fmt(precision) + ")", d});
+    if (violation)
+      r.violations.push_back(
+          {inv, std::move(els), x.str() + from + y.str() + " is " + fmt(d) + " away (precision " + fmt(precision) + ")", d});
   }
 };
 
@@ -77,18 +85,18 @@ GeometryReport check_geometry(const Body& b, double precision) {
     if (outs.empty()) {
       for (LoopH l : b.loops())  // a lone vertex: on its face's surface
         if (b.is_lone(l) && b.lone_vertex(l) == v && !b.is_border(l) && has_surface(b, b.face(l)))
-          run.deviation(std::abs(geo::signed_distance(b.surface(b.face(l)), p)), "vertex_on_surface",
-                        {v.str(), b.face(l).str()}, v.str() + " from the surface of " + b.face(l).str());
+          run.deviation(std::abs(geo::signed_distance(b.surface(b.face(l)), p)), "vertex_on_surface", v, b.face(l),
+                        " from the surface of ");
       continue;
     }
     for (HalfedgeH h : outs) {
       EdgeH e = edge_of(h);
       if (has_curve(b, e))
-        run.deviation(geo::closest_point(b.curve(e), p).distance - polyline_chordal(b.curve(e)), "vertex_on_curve",
-                      {v.str(), e.str()}, v.str() + " from the curve of " + e.str());
+        run.deviation(geo::closest_point(b.curve(e), p).distance - polyline_chordal(b.curve(e)), "vertex_on_curve", v, e,
+                      " from the curve of ");
       if (!b.is_border(h) && has_surface(b, b.face(h)))
-        run.deviation(std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface",
-                      {v.str(), b.face(h).str()}, v.str() + " from the surface of " + b.face(h).str());
+        run.deviation(std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface", v, b.face(h),
+                      " from the surface of ");
     }
   }
 
@@ -113,7 +121,7 @@ GeometryReport check_geometry(const Body& b, double precision) {
       FaceH f = b.face(side);
       double worst = 0.0;
       for (const geo::Vec3& q : probes) worst = std::max(worst, std::abs(geo::signed_distance(b.surface(f), q)));
-      run.deviation(worst - slack, "edge_on_surface", {e.str(), f.str()}, e.str() + " from the surface of " + f.str());
+      run.deviation(worst - slack, "edge_on_surface", e, f, " from the surface of ");
     }
   }
 

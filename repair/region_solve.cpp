@@ -48,9 +48,11 @@ std::vector<VertexH> face_vertices(const Body& b, FaceH f) {
 // face next to a repair (a plate with many holes) costs no more than a small one.
 bool few_corners(const Body& b, FaceH f, std::size_t limit) {
   std::size_t n = 0;
-  for (LoopH l : b.loops_of(f)) {
+  // The loops one by one (loops_of would list all of a plate's rings first).
+  for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
     HalfedgeH start = b.first(l), h = start;
     if (!start.valid()) continue;
+    if (n >= limit) return false;  // a loop has at least one corner
     do {
       if (++n > limit) return false;
       h = b.next(h);
