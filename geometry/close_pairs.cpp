@@ -42,4 +42,48 @@ std::vector<std::pair<std::size_t, std::size_t>> close_pairs(const std::vector<B
   return out;
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> close_pairs_grouped(const std::vector<Box>& boxes,
+                                                                     const std::vector<std::size_t>& starts, double margin) {
+  const double h = margin / 2;
+  // close_pairs' test, box against box.
+  auto meet = [&](const Box& a, const Box& b) {
+    return !a.empty() && !b.empty() && ((b.min.array() - h) <= (a.max.array() + h)).all() &&
+           ((b.max.array() + h) >= (a.min.array() - h)).all();
+  };
+  constexpr std::size_t kSmall = 16;
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  std::vector<Box> swept;                                    // one per range below
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;  // [first, last) of boxes
+  for (std::size_t g = 0; g + 1 < starts.size(); ++g) {
+    const std::size_t first = starts[g], last = starts[g + 1];
+    if (last - first <= kSmall) {
+      Box around;
+      for (std::size_t i = first; i < last; ++i)
+        if (!boxes[i].empty()) {
+          around.add(boxes[i].min);
+          around.add(boxes[i].max);
+        }
+      // Pairs within the group, directly.
+      for (std::size_t i = first; i < last; ++i)
+        for (std::size_t j = i + 1; j < last; ++j)
+          if (meet(boxes[i], boxes[j])) out.emplace_back(i, j);
+      swept.push_back(around);
+      ranges.emplace_back(first, last);
+    } else {
+      for (std::size_t i = first; i < last; ++i) {
+        swept.push_back(boxes[i]);
+        ranges.emplace_back(i, i + 1);
+      }
+    }
+  }
+  // Ranges are disjoint and a range is never paired with itself: each pair of boxes comes
+  // from one pair of ranges, once.
+  for (auto [p, q] : close_pairs(swept, margin))
+    for (std::size_t i = ranges[p].first; i < ranges[p].second; ++i)
+      for (std::size_t j = ranges[q].first; j < ranges[q].second; ++j)
+        if (meet(boxes[i], boxes[j])) out.emplace_back(std::min(i, j), std::max(i, j));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace kintsugi::geo

@@ -212,7 +212,11 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
     // bounded local density, however many rings (bosses) the face holds.
-    for (auto [p, q] : geo::close_pairs(boxes, t)) {
+    std::vector<std::size_t> starts;  // each loop's first side, then the end
+    for (std::size_t k = 0; k < sides.size(); ++k)
+      if (k == 0 || sides[k].loop != sides[k - 1].loop) starts.push_back(k);
+    starts.push_back(sides.size());
+    for (auto [p, q] : starts.size() > 2 ? geo::close_pairs_grouped(boxes, starts, t) : geo::close_pairs(boxes, t)) {
       const Side& A = sides[p];
       const Side& B = sides[q];
       if (edge_of(A.h) == edge_of(B.h)) continue;  // a seam

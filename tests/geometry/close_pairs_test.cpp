@@ -51,5 +51,25 @@ RC_GTEST_PROP(ClosePairs, AreThePairsTheDefinitionNames, ()) {
   RC_ASSERT(close_pairs(boxes, margin) == by_definition(boxes, margin));
 }
 
+// Grouped or not, the same pairs: groups small (one box for the sweep) and large (box by
+// box), empty ones, boxes in them empty too.
+RC_GTEST_PROP(ClosePairs, GroupedAreTheSamePairs, ()) {
+  const double margin = *rc::gen::element(0.0, 0.5, 1.0, 2.0);
+  std::vector<Box> boxes;
+  std::vector<std::size_t> starts{0};
+  const int groups = *rc::gen::inRange(0, 12);
+  for (int g = 0; g < groups; ++g) {
+    const int n = *rc::gen::element(0, 1, 3, 16, 17, 30);
+    for (int i = 0; i < n; ++i) {
+      Box& b = boxes.emplace_back();
+      if (*rc::gen::inRange(0, 10) == 0) continue;
+      for (int corner = 0; corner < 2; ++corner)
+        b.add(Vec3(*rc::gen::inRange(0, 12), *rc::gen::inRange(0, 12), *rc::gen::inRange(0, 12)) * 0.5);
+    }
+    starts.push_back(boxes.size());
+  }
+  RC_ASSERT(close_pairs_grouped(boxes, starts, margin) == by_definition(boxes, margin));
+}
+
 }  // namespace
 }  // namespace kintsugi::geo
