@@ -128,7 +128,8 @@ nlohmann::json check(const Model& model, std::optional<double> tol, bool with_oc
 nlohmann::json detect(const Model& model, std::optional<double> tol, std::string* tolerance_note, bool with_suggestion) {
   cli::ToleranceChoice choice = tolerance_for(model, tol, tolerance_note, /*suggest=*/true);
   nlohmann::json j = cli::detect_json(kintsugi::detect(model.body, choice.tol), choice, model.units);
-  if (with_suggestion) j["suggested_tolerance"] = cli::suggestion_json(suggest_tolerance(model.body));
+  if (with_suggestion)
+    j["suggested_tolerance"] = cli::suggestion_json(choice.suggestion ? *choice.suggestion : suggest_tolerance(model.body));
   return j;
 }
 

@@ -42,25 +42,25 @@ std::optional<ToleranceChoice> within_bounds(ToleranceChoice c, double size, con
 std::optional<ToleranceChoice> choose_tolerance(const Model& m, std::optional<double> given, std::string* error,
                                                 bool suggest) {
   double size = model_size(m.body);
-  if (given) return within_bounds({geo::Tolerances::for_model(*given, size), "--tol"}, size, m.units, error);
+  if (given) return within_bounds({geo::Tolerances::for_model(*given, size), "--tol", true, std::nullopt}, size, m.units, error);
   if (m.meta.is_object() && m.meta.contains("tolerance")) {
     const auto& t = m.meta["tolerance"];
     if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= 0) {
       *error = "meta.tolerance must be a positive number";
       return std::nullopt;
     }
-    return within_bounds({geo::Tolerances::for_model(t.get<double>(), size), "meta.tolerance"}, size, m.units, error);
+    return within_bounds({geo::Tolerances::for_model(t.get<double>(), size), "meta.tolerance", true, std::nullopt}, size, m.units, error);
   }
   if (suggest) {
     ToleranceSuggestion s = suggest_tolerance(m.body);
     if (s.trusted())
       return ToleranceChoice{geo::Tolerances::for_model(s.tolerance, size),
-                             "the model's own suggestion (confidence " + s.confidence + ": " + s.explanation + ")", true};
+                             "the model's own suggestion (confidence " + s.confidence + ": " + s.explanation + ")", true, s};
     return ToleranceChoice{geo::Tolerances::default_for_model(size),
                            "default (1e-3 x model size), not trusted: the model suggests no tolerance to trust (confidence " + s.confidence + ": " + s.explanation + ")",
-                           false};
+                           false, s};
   }
-  return ToleranceChoice{geo::Tolerances::default_for_model(size), "default (1e-3 x model size)"};
+  return ToleranceChoice{geo::Tolerances::default_for_model(size), "default (1e-3 x model size)", true, std::nullopt};
 }
 
 }  // namespace kintsugi::cli

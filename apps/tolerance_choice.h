@@ -4,6 +4,7 @@
 
 #include "apps/model_files.h"
 #include "geometry/tolerance.h"
+#include "repair/suggest_tolerance.h"
 
 #include <optional>
 #include <string>
@@ -16,6 +17,9 @@ struct ToleranceChoice {
   // False when the tolerance is only the size default because the model suggests none
   // (no clear gap between spurious and intended features): nothing destructive may use it.
   bool trusted = true;
+  // The model's suggestion, when choosing asked for it (kept so that a caller reporting
+  // it does not compute it twice: on a large model it is the longest part of detect).
+  std::optional<ToleranceSuggestion> suggestion;
 };
 
 // A tolerance must lie between these fractions of the model's size (model_size). At or

@@ -128,19 +128,41 @@ bool share_vertex(const Body& b, HalfedgeH x, HalfedgeH y) {
 // Close pairs belong to one occurrence of pinching when, side by side, their edges are the
 // same or meet at a vertex: a block's ring edge and its two side edges all come close to
 // the same outer edge at one place; a second block along that edge is another place.
+// Occurrences are ordered by their first pair, each pair in order.
+//
+// "Near" depends on edges only (the same edge, or one at either end of the other), so the
+// pairs near a pair are found by looking up its sides' edges' neighbours in an index of
+// the pairs by their edges: linear in the pairs. Comparing every two pairs was quadratic,
+// and at a coarse tolerance (the tolerance suggestion's probe) a plate's bosses make
+// millions of pairs.
 std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vector<ClosePair>& pairs) {
-  auto near = [&](HalfedgeH x, HalfedgeH y) { return edge_of(x) == edge_of(y) || share_vertex(b, x, y); };
-  auto same_place = [&](const ClosePair& p, const ClosePair& q) {
-    return (near(p.a, q.a) && near(p.b, q.b)) || (near(p.a, q.b) && near(p.b, q.a));
+  auto key = [](EdgeH x, EdgeH y) { return (std::uint64_t(x.idx()) << 32) | y.idx(); };
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> by_edges;  // (edge of a, edge of b) -> pairs
+  for (std::size_t i = 0; i < pairs.size(); ++i) by_edges[key(edge_of(pairs[i].a), edge_of(pairs[i].b))].push_back(i);
+  // The edges near half-edge x: its own, and every edge at either of its ends.
+  auto near_edges = [&](HalfedgeH x) {
+    std::vector<EdgeH> out{edge_of(x)};
+    for (VertexH v : {b.origin(x), b.target(x)})
+      for (HalfedgeH h : b.outgoing(v)) out.push_back(edge_of(h));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
   };
   std::vector<std::size_t> group(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) group[i] = i;
-  std::function<std::size_t(std::size_t)> root = [&](std::size_t i) {
-    return group[i] == i ? i : group[i] = root(group[i]);
+  auto root = [&](std::size_t i) {  // iterative, halving the path: millions of pairs may chain
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
   };
-  for (std::size_t i = 0; i < pairs.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (same_place(pairs[i], pairs[j])) group[root(i)] = root(j);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const std::vector<EdgeH> na = near_edges(pairs[i].a), nb = near_edges(pairs[i].b);
+    // Pair j is at the same place when its sides are near i's, either way round.
+    for (EdgeH x : na)
+      for (EdgeH y : nb)
+        for (std::uint64_t k : {key(x, y), key(y, x)})
+          if (auto it = by_edges.find(k); it != by_edges.end())
+            for (std::size_t j : it->second) group[root(i)] = root(j);
+  }
   std::vector<std::vector<std::size_t>> out;
   std::vector<long> index(pairs.size(), -1);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
