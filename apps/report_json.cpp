@@ -1,6 +1,7 @@
 #include "apps/report_json.h"
 
 #include "invariants/region_validity.h"
+#include "repair/detect_threads.h"
 #include "invariants/topology_check.h"
 #ifdef KINTSUGI_HAVE_OCCT
 #include "io/occt/exchange.h"
@@ -34,7 +35,7 @@ CheckOutcome check_body(const Body& b, const geo::Tolerances& tol, [[maybe_unuse
   c.violations = check_topology(b);
   // Geometry is only meaningful on a topologically valid body (walks need closed loops).
   if (c.violations.empty()) {
-    c.geometry = check_geometry(b, tol.precision);
+    c.geometry = check_geometry(b, tol.precision, detect_threads());
     c.violations.insert(c.violations.end(), c.geometry.violations.begin(), c.geometry.violations.end());
     // Loops in each face's parameter domain: crossing themselves or each other, turning
     // the wrong way (what OpenCASCADE's checker calls self-intersecting wires and bad

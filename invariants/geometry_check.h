@@ -26,7 +26,9 @@ struct GeometryReport {
   std::vector<std::string> max_elements;  // e.g. {"v3", "f2"}
 };
 
-GeometryReport check_geometry(const Body& b, double precision);
+// On `threads` threads where the body is large and has no free-form element: the same
+// report, violations in the same order (Geometry.CheckOnTwoThreadsIsTheSame).
+GeometryReport check_geometry(const Body& b, double precision, int threads = 1);
 
 // `face_sense` for one face: false when f is planar and its outer loop (curved edges
 // followed within `precision`) turns clockwise about its outward normal, i.e. the face is

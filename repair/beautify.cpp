@@ -11,6 +11,7 @@
 #include "kernel/transaction.h"
 #include "repair/beautify_detail.h"
 #include "repair/detect.h"
+#include "repair/detect_threads.h"
 #include "repair/pass.h"
 #include "repair/region_solve.h"
 
@@ -289,7 +290,7 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
   }
   std::vector<Problem> left;
   BeautifyOptions opt = options;
-  if (!(opt.lies_on > 0)) opt.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision).max_deviation);
+  if (!(opt.lies_on > 0)) opt.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
   run_queue(b, tol, pass, std::move(mine), report, opt, left);
 }
 
@@ -297,7 +298,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   using clock = std::chrono::steady_clock;
   // What the input already had off its curves and surfaces: repairs must not make it worse.
   BeautifyOptions options = options_in;
-  if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision).max_deviation);
+  if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
   BeautifyReport r;
   r.counts_before = b.counts();
   auto t0 = clock::now();
@@ -376,7 +377,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
         e.outcome = Outcome::resolved_later;
   }
   r.counts_after = b.counts();
-  GeometryReport g = check_geometry(b, tol.precision);
+  GeometryReport g = check_geometry(b, tol.precision, detect_threads());
   r.max_deviation = g.max_deviation;
   r.max_elements = g.max_elements;
   return r;
