@@ -65,15 +65,22 @@ double edge_length(const Body& b, EdgeH e) {
 namespace {
 
 // One loop as a closed polyline (its first point not repeated), appended to `pts`.
+// Walked in place, and a straight side adds its start without a polyline of its own:
+// the planar faces' measures in a whole-model detection allocated for every edge.
 void append_loop(const Body& b, LoopH l, double chordal, std::vector<geo::Vec3>& pts) {
   if (b.is_lone(l)) {
     pts.push_back(b.point(b.lone_vertex(l)));
     return;
   }
-  for (HalfedgeH h : b.loop_halfedges(l)) {
-    std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
-    pts.insert(pts.end(), seg.begin(), seg.end() - 1);  // the end is the next one's start
-  }
+  b.for_each_halfedge(l, [&](HalfedgeH h) {
+    const geo::Curve& c = b.curve(edge_of(h));
+    if (std::holds_alternative<std::monostate>(c) || std::holds_alternative<geo::Line>(c)) {
+      pts.push_back(b.point(b.origin(h)));  // halfedge_polyline's {origin, target}, less its end
+    } else {
+      std::vector<geo::Vec3> seg = halfedge_polyline(b, h, chordal);
+      pts.insert(pts.end(), seg.begin(), seg.end() - 1);  // the end is the next one's start
+    }
+  });
 }
 
 }  // namespace
@@ -106,8 +113,11 @@ std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double
     const geo::Vec3 outward = plane->frame.z.normalized() * (b.same_sense(f) ? 1.0 : -1.0);
     AreaAndBounds r{0.0, {}};
     // The outer loop turns counter-clockwise about the outward normal, rings clockwise;
-    // struts and seams are walked both ways and add nothing.
-    for (const std::vector<geo::Vec3>& loop : face_boundary(b, f, chordal)) {
+    // struts and seams are walked both ways and add nothing. One buffer for all loops.
+    std::vector<geo::Vec3> loop;
+    for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
+      loop.clear();
+      append_loop(b, l, chordal, loop);
       r.area += outward.dot(geo::polygon_normal(loop)) / 2;
       for (const geo::Vec3& p : loop) r.bounds.add(p);
     }

@@ -119,6 +119,19 @@ class Body {
   // Half-edges of a loop in order (empty for a lone-vertex loop). Bounded: stops after
   // halfedge_slots() steps, so a corrupt cycle cannot hang the caller.
   std::vector<HalfedgeH> loop_halfedges(LoopH l) const;
+  // visit(h) for the same half-edges in the same order, without building the list (the
+  // whole-model measures walk millions of loops).
+  template <class Visit>
+  void for_each_halfedge(LoopH l, Visit&& visit) const {
+    const HalfedgeH start = first(l);
+    if (!start.valid()) return;
+    HalfedgeH h = start;
+    std::size_t n = 0;
+    do {
+      visit(h);
+      h = next(h);
+    } while (h != start && h.valid() && h.idx() < halfedges_.size() && ++n <= halfedges_.size());
+  }
   std::vector<VertexH> loop_vertices(LoopH l) const;
   // Half-edges leaving v, walking the rotation h -> next(twin(h)). Bounded likewise.
   std::vector<HalfedgeH> outgoing(VertexH v) const;

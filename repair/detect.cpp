@@ -53,10 +53,9 @@ FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double
 FaceInfo DetectContext::measure(FaceH f) const {
   double perimeter = 0.0;
   std::size_t loops = 0;
-  for (LoopH l : b.loops_of(f)) {
+  for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
     ++loops;
-    if (!b.is_lone(l))
-      for (HalfedgeH h : b.loop_halfedges(l)) perimeter += edge_length(edge_of(h));
+    b.for_each_halfedge(l, [&](HalfedgeH h) { perimeter += edge_length(edge_of(h)); });
   }
   constexpr double kPerimeterShare = 400;
   const double coarse =

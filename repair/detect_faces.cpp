@@ -209,16 +209,16 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
     // are not pinched, and a stretch of them joins its neighbours as if it had no length.
     auto gap_side = [&](HalfedgeH h) { return b.is_border(twin(h)); };
     auto len = [&](HalfedgeH h) { return gap_side(h) ? 0.0 : c.edge_length(edge_of(h)); };
-    for (LoopH l : b.loops_of(f)) {
+    for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
       const std::size_t loop = loop_start.size();
       loop_start.push_back(prefix.size());
       prefix.push_back(0.0);
       std::size_t i = 0;
-      for (HalfedgeH h : b.loop_halfedges(l)) {
+      b.for_each_halfedge(l, [&](HalfedgeH h) {
         prefix.push_back(prefix.back() + len(h));
         sides.push_back({loop, i++, h});
         boxes.push_back(gap_side(h) ? geo::Box{} : halfedge_box(b, h, c.chordal));
-      }
+      });
     }
     loop_start.push_back(prefix.size());
     polys.assign(sides.size(), {});
