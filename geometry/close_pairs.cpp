@@ -8,21 +8,27 @@
 
 namespace kintsugi::geo {
 
+namespace {
+
+// The sweep's test for one pair: the boxes, each grown by h on every side, overlap
+// (closed intervals); an empty box meets nothing.
+bool meet(const Box& a, const Box& b, double h) {
+  return !a.empty() && !b.empty() && ((b.min.array() - h) <= (a.max.array() + h)).all() &&
+         ((b.max.array() + h) >= (a.min.array() - h)).all();
+}
+
+}  // namespace
+
 std::vector<std::pair<std::size_t, std::size_t>> close_pairs(const std::vector<Box>& boxes, double margin) {
   const double h = margin / 2;  // each box grows by half the margin on every side
   // A face's few sides (most faces have four): every pair directly, without the sweep's
-  // set-up. The same test as the sweep's closed intervals.
+  // set-up.
   constexpr std::size_t kDirect = 16;
   if (boxes.size() <= kDirect) {
     std::vector<std::pair<std::size_t, std::size_t>> out;
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      if (boxes[i].empty()) continue;
-      const Vec3 lo = boxes[i].min.array() - h, hi = boxes[i].max.array() + h;
+    for (std::size_t i = 0; i < boxes.size(); ++i)
       for (std::size_t j = i + 1; j < boxes.size(); ++j)
-        if (!boxes[j].empty() && ((boxes[j].min.array() - h) <= hi.array()).all() &&
-            ((boxes[j].max.array() + h) >= lo.array()).all())
-          out.emplace_back(i, j);
-    }
+        if (meet(boxes[i], boxes[j], h)) out.emplace_back(i, j);
     return out;
   }
   using CBox = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
@@ -45,11 +51,6 @@ std::vector<std::pair<std::size_t, std::size_t>> close_pairs(const std::vector<B
 std::vector<std::pair<std::size_t, std::size_t>> close_pairs_grouped(const std::vector<Box>& boxes,
                                                                      const std::vector<std::size_t>& starts, double margin) {
   const double h = margin / 2;
-  // close_pairs' test, box against box.
-  auto meet = [&](const Box& a, const Box& b) {
-    return !a.empty() && !b.empty() && ((b.min.array() - h) <= (a.max.array() + h)).all() &&
-           ((b.max.array() + h) >= (a.min.array() - h)).all();
-  };
   constexpr std::size_t kSmall = 16;
   std::vector<std::pair<std::size_t, std::size_t>> out;
   std::vector<Box> swept;                                    // one per range below
@@ -66,7 +67,7 @@ std::vector<std::pair<std::size_t, std::size_t>> close_pairs_grouped(const std::
       // Pairs within the group, directly.
       for (std::size_t i = first; i < last; ++i)
         for (std::size_t j = i + 1; j < last; ++j)
-          if (meet(boxes[i], boxes[j])) out.emplace_back(i, j);
+          if (meet(boxes[i], boxes[j], h)) out.emplace_back(i, j);
       swept.push_back(around);
       ranges.emplace_back(first, last);
     } else {
@@ -81,7 +82,7 @@ std::vector<std::pair<std::size_t, std::size_t>> close_pairs_grouped(const std::
   for (auto [p, q] : close_pairs(swept, margin))
     for (std::size_t i = ranges[p].first; i < ranges[p].second; ++i)
       for (std::size_t j = ranges[q].first; j < ranges[q].second; ++j)
-        if (meet(boxes[i], boxes[j])) out.emplace_back(std::min(i, j), std::max(i, j));
+        if (meet(boxes[i], boxes[j], h)) out.emplace_back(std::min(i, j), std::max(i, j));
   std::sort(out.begin(), out.end());
   return out;
 }
