@@ -178,14 +178,11 @@ void in_blocks_of(detail::DetectContext& c, const std::vector<H>& items, const D
     return;
   }
   std::vector<std::vector<Problem>> found(t);
-  auto block = [&](std::size_t k) {
+  // in_blocks over the t block numbers: block k on thread k.
+  detail::in_blocks(t, int(t), [&](std::size_t k) {
     const std::size_t lo = items.size() * k / t, hi = items.size() * (k + 1) / t;
     detector(c, found[k], std::span<const H>(items).subspan(lo, hi - lo));
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < t; ++k) pool.emplace_back(block, k);
-  block(0);
-  for (std::thread& th : pool) th.join();
+  });
   for (std::vector<Problem>& f : found) out.insert(out.end(), std::make_move_iterator(f.begin()), std::make_move_iterator(f.end()));
 }
 

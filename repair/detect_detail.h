@@ -101,14 +101,12 @@ std::vector<std::vector<HalfedgeH>> simple_cycles(const Body& b, const std::vect
 
 void detect_gaps(DetectContext& c, std::vector<Problem>& out);
 // Pinching and same geometry are found face by face and edge by edge, the largest parts
-// of a detection: each also takes a part of the scope (a block of a whole-body
+// of a detection: each takes a part of the scope (all of it, or a block of a whole-body
 // detection run on its own thread; see DetectContext::threads_for_detectors).
 void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const FaceH> faces);
-void detect_pinched(DetectContext& c, std::vector<Problem>& out);
 void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out);  // types 5, 6, 9
 void detect_short_edges(DetectContext& c, std::vector<Problem>& out);       // types 7, 11
 void detect_same_geometry(DetectContext& c, std::vector<Problem>& out, std::span<const EdgeH> edges);
-void detect_same_geometry(DetectContext& c, std::vector<Problem>& out);
 void detect_mergeable(DetectContext& c, std::vector<Problem>& out);
 
 }  // namespace kintsugi::detail

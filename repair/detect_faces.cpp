@@ -177,8 +177,6 @@ std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vect
 
 }  // namespace
 
-void detect_pinched(DetectContext& c, std::vector<Problem>& out) { detect_pinched(c, out, c.scope.faces); }
-
 void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const FaceH> faces) {
   const Body& b = c.b;
   const double t = c.tol.length;
@@ -337,8 +335,6 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
     }
   }
 }
-
-void detect_same_geometry(DetectContext& c, std::vector<Problem>& out) { detect_same_geometry(c, out, c.scope.edges); }
 
 // Each pair of faces is reported once, at the first of its common edges in `edges`.
 void detect_same_geometry(DetectContext& c, std::vector<Problem>& out, std::span<const EdgeH> edges) {
