@@ -4,8 +4,8 @@
 
 namespace kintsugi {
 
-std::optional<Body> assemble(const BodyDescription& d, AssembleError* error) {
-  std::optional<Body> b = assemble_references(d, error);
+std::optional<Body> assemble(BodyDescription d, AssembleError* error) {
+  std::optional<Body> b = assemble_references(std::move(d), error);
   if (!b) return std::nullopt;
   std::vector<Violation> bad = check_topology(*b);
   if (!bad.empty()) {

@@ -71,6 +71,27 @@ std::uint32_t JsonTreeBuilder::place(std::uint32_t n) {
   return n;
 }
 
+bool JsonTreeBuilder::copy(JsonView v) {
+  switch (v.kind()) {
+    case JsonTree::Kind::kNull: null(); return true;
+    case JsonTree::Kind::kBool: boolean(v.as_bool()); return true;
+    case JsonTree::Kind::kInt: integer(std::int64_t(v.as_unsigned())); return true;
+    case JsonTree::Kind::kUint: unsigned_integer(v.as_unsigned()); return true;
+    case JsonTree::Kind::kFloat: floating(v.as_double()); return true;
+    case JsonTree::Kind::kString: string(v.as_string()); return true;
+    case JsonTree::Kind::kArray:
+    case JsonTree::Kind::kObject: {
+      const bool object = v.is_object();
+      open(v.kind());
+      for (JsonView c = v.first(); c; c = c.next())
+        if ((object && !key(c.key())) || !copy(c)) return false;
+      close();
+      return true;
+    }
+  }
+  return false;
+}
+
 double JsonView::as_double() const {
   switch (kind()) {
     case JsonTree::Kind::kInt: return double(n().v.i);

@@ -72,6 +72,8 @@ class JsonTree {
   std::string chars_;
 };
 
+class JsonView;
+
 // Builds a JsonTree from a parser's events in document order: open a container, give each
 // member its key, add values, close. Refuses a key that appears twice in one object
 // (nlohmann's parser would keep the last; simdjson's would keep both). Nesting depth is
@@ -97,6 +99,9 @@ class JsonTreeBuilder {
   std::uint32_t open_array() { return open(JsonTree::Kind::kArray); }
   std::uint32_t open_object() { return open(JsonTree::Kind::kObject); }
   void close() { stack_.pop_back(); }
+  // A copy of `v` (of another tree), as one value; false if an object in it has a key
+  // twice (it cannot, when that tree was built by a builder). As deep as `v`.
+  bool copy(JsonView v);
 
  private:
   struct Open {

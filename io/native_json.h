@@ -10,8 +10,9 @@
 // Problems with the document as a whole (too large, empty) have no pointer prefix.
 // It never crashes on input, never recurses deeper than a fixed nesting limit, and
 // allocates in proportion to the input, which is itself capped at 1 GiB: the text, the
-// parser's index of it (about the text's size again), one element at a time as a small
-// tree, and the body it describes.
+// parser's index of it (about the text's size again), a copy of the second half of a
+// large text (read on a second thread), one element at a time as a small tree per
+// thread, and the body it describes.
 #pragma once
 
 #include "kernel/body.h"
@@ -41,8 +42,12 @@ struct NativeDocument {
 // Which parser reads the text. kSimdjsonFirst: simdjson, several times faster, falling
 // back on nlohmann's for anything out of the ordinary (a syntax error, a duplicate key, deep
 // nesting), so a refusal is worded the same either way (io/native_json_parse.h).
+// A document of 8 MiB or more is parsed by simdjson in two halves on two threads, where
+// there are two cores (io/native_json_parse.h: cut between two elements near the middle;
+// anything out of the ordinary reads it whole again), which gives the same document.
+// kSimdjsonHalves: in two halves whatever its size, for the tests and the fuzzer.
 // kReferenceOnly: nlohmann's alone, the reference the tests and the fuzzer compare with.
-enum class NativeParser { kSimdjsonFirst, kReferenceOnly };
+enum class NativeParser { kSimdjsonFirst, kSimdjsonHalves, kReferenceOnly };
 
 // Parses text; on failure returns nullopt and sets *error (if given) to a message that
 // starts with the JSON pointer of the offending place.

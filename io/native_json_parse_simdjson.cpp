@@ -21,21 +21,36 @@ class SimdjsonTreeParser {
  public:
   SimdjsonTreeParser(ElementSink* sink, JsonTree* root, std::size_t bytes) : sink_(sink), root_(root), bytes_(bytes) {}
 
-  bool document(od::document& doc) {
+  // A whole document; with `continued` >= 0, the second half of a document cut inside
+  // that element array (native_json_parse.h: parse_native_simdjson_tail).
+  bool document(od::document& doc, int continued = -1) {
     od::object top;
     if (doc.get_object().get(top)) return false;
     root_.reset();
     root_.open_object();
+    bool first = true;
     for (auto member : top) {
       od::field field;
       std::string_view key;
-      if (std::move(member).get(field) || !key_of(field, &key) || !root_.key(key)) return false;
+      if (std::move(member).get(field) || !key_of(field, &key)) return false;
       od::value v = field.value();
       od::json_type type;
       if (v.type().get(type)) return false;
+      if (continued >= 0 && first) {
+        // The stand-in "" holds the rest of the cut array; it is no member of the document.
+        first = false;
+        if (!key.empty() || type != od::json_type::array || !elements(v, ElementKind(continued), false)) return false;
+        continued_count_ = count_;
+        continue;
+      }
+      first = false;
+      if (!root_.key(key)) return false;
       const int kind = element_kind(key);
+      last_kind_ = -1;
       if (kind >= 0 && type == od::json_type::array) {
         if (!elements(v, ElementKind(kind))) return false;
+        last_kind_ = kind;
+        last_count_ = count_;
       } else if (!value(v, root_, 1)) {
         return false;
       }
@@ -46,12 +61,21 @@ class SimdjsonTreeParser {
     return doc.current_location().get(rest) == simdjson::OUT_OF_BOUNDS;
   }
 
+  // The last member of the top level, if it was an element array: its kind (else -1) and
+  // its number of elements.
+  int last_kind() const { return last_kind_; }
+  std::size_t last_count() const { return last_count_; }
+  // For a second half: the number of elements in the stand-in.
+  std::size_t continued_count() const { return continued_count_; }
+
  private:
   ElementSink* sink_;
   JsonTreeBuilder root_;
   std::size_t bytes_;
   JsonTree element_tree_;
   JsonTreeBuilder element_{&element_tree_};
+  int last_kind_ = -1;
+  std::size_t last_count_ = 0, continued_count_ = 0, count_ = 0;
 
   static int element_kind(std::string_view key) {
     for (int k = 0; k < kElementKinds; ++k)
@@ -73,10 +97,13 @@ class SimdjsonTreeParser {
     return !field.unescaped_key().get(*key);
   }
 
-  // An element array: an empty stand-in in the top level; each element built alone.
-  bool elements(od::value& v, ElementKind kind) {
-    root_.open_array();
-    root_.close();
+  // An element array: an empty stand-in in the top level (`stand_in`); each element
+  // built alone.
+  bool elements(od::value& v, ElementKind kind, bool stand_in = true) {
+    if (stand_in) {
+      root_.open_array();
+      root_.close();
+    }
     od::array a;
     std::size_t count = 0;
     if (v.get_array().get(a) || a.count_elements().get(count)) return false;
@@ -89,6 +116,7 @@ class SimdjsonTreeParser {
       if (!value(e, element_, 2)) return false;
       sink_->element(kind, index++, JsonView(&element_tree_, 0));
     }
+    count_ = index;
     return true;
   }
 
@@ -205,6 +233,29 @@ FastParse parse_native_simdjson(const char* data, std::size_t size, std::size_t 
   if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
   SimdjsonTreeParser p(sink, root, size);
   return p.document(doc) ? FastParse::kDone : FastParse::kUseReference;
+}
+
+FastParse parse_native_simdjson_head(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
+                                     JsonTree* root, ElementKind* cut, std::size_t* count) {
+  od::parser parser;
+  od::document doc;
+  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
+  SimdjsonTreeParser p(sink, root, size);
+  if (!p.document(doc) || p.last_kind() < 0) return FastParse::kUseReference;
+  *cut = ElementKind(p.last_kind());
+  *count = p.last_count();
+  return FastParse::kDone;
+}
+
+FastParse parse_native_simdjson_tail(const char* data, std::size_t size, std::size_t capacity, ElementKind cut,
+                                     ElementSink* sink, JsonTree* root, std::size_t* count) {
+  od::parser parser;
+  od::document doc;
+  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
+  SimdjsonTreeParser p(sink, root, size);
+  if (!p.document(doc, int(cut))) return FastParse::kUseReference;
+  *count = p.continued_count();
+  return FastParse::kDone;
 }
 
 }  // namespace kintsugi::io

@@ -7,10 +7,10 @@
 #include "io/native_json_parse.h"
 
 #include "invariants/assemble.h"
+#include "kernel/huge_pages.h"
 #include "geometry/freeform.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -21,8 +21,10 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <numbers>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -334,6 +336,31 @@ class DocumentReader final : public ElementSink {
     }
   }
 
+  // Takes the elements `tail` read from the second half of a document cut in array `cut`
+  // (io/native_json_parse.h), after this reader's, which read the first half. False when
+  // either refused an element: the caller then reads the whole text again, so that the
+  // refusal names the element's place in the whole document.
+  bool absorb(DocumentReader&& tail, ElementKind cut) {
+    for (int k = 0; k < kElementKinds; ++k)
+      if (pending_[k].failed || tail.pending_[k].failed || (k != cut && pending_[k].count && tail.pending_[k].count))
+        return false;
+    auto append = [](auto& to, auto& from) {
+      if (to.empty()) {
+        to = std::move(from);
+        return;
+      }
+      to.reserve(to.size() + from.size());
+      std::move(from.begin(), from.end(), std::back_inserter(to));
+    };
+    append(d_.vertices, tail.d_.vertices);
+    append(d_.edges, tail.d_.edges);
+    append(d_.loops, tail.d_.loops);
+    append(d_.faces, tail.d_.faces);
+    append(d_.shells, tail.d_.shells);
+    for (int k = 0; k < kElementKinds; ++k) pending_[k].count += tail.pending_[k].count;
+    return true;
+  }
+
   // The document without its elements (the element arrays are there, empty).
   std::optional<NativeDocument> finish(JsonView doc) {
     NativeDocument out;
@@ -342,7 +369,7 @@ class DocumentReader final : public ElementSink {
         !settle(kShells, shell_ids_, d_.shells) || !references(d_))
       return refuse();
     AssembleError why;
-    std::optional<Body> body = assemble(d_, &why);
+    std::optional<Body> body = assemble(std::move(d_), &why);
     if (!body) {
       fail(pointer_of(why.element), why.message);
       return refuse();
@@ -1043,15 +1070,48 @@ class DocumentReader final : public ElementSink {
   }
 };
 
+// The top level of a document read in two halves: the first half's members, then the
+// second's. False if a key is in both (the whole text has it twice).
+bool join_top_levels(JsonView head, JsonView tail, JsonTree* out) {
+  JsonTreeBuilder b(out);
+  b.reset();
+  b.open_object();
+  for (JsonView half : {head, tail})
+    for (JsonView m = half.first(); m; m = m.next())
+      if (!b.key(m.key()) || !b.copy(m)) return false;
+  b.close();
+  return true;
+}
+
+// Documents from this size on are read in two halves at once, where there are two cores.
+constexpr std::size_t kHalvesFromBytes = std::size_t(8) << 20;
+
+bool read_in_halves(std::size_t size, NativeParser which) {
+  if (which == NativeParser::kSimdjsonHalves) return true;
+  return which == NativeParser::kSimdjsonFirst && size >= kHalvesFromBytes && std::thread::hardware_concurrency() >= 2;
+}
+
 // The whole reader over text[0, size), with simdjson_padding() readable bytes past the
-// end of the text (`capacity` is the whole buffer). `release` (if given) frees the text:
-// called once it has been parsed, before the body is assembled, so that the text and the
-// body are never in memory together.
-std::optional<NativeDocument> parse_document(const char* text, std::size_t size, std::size_t capacity,
-                                             NativeParser which, std::string* error,
-                                             const std::function<void()>& release = {}) {
+// end of the text (`capacity` is the whole buffer; the text is changed while it is read
+// in halves, and put back). `release` (if given) frees the text: called once it has been
+// parsed, before the body is assembled, so that the text and the body are never in
+// memory together.
+std::optional<NativeDocument> parse_document(char* text, std::size_t size, std::size_t capacity, NativeParser which,
+                                             std::string* error, const std::function<void()>& release = {}) {
   try {
-    if (which == NativeParser::kSimdjsonFirst) {
+    if (read_in_halves(size, which)) {
+      DocumentReader head(error), tail(error);
+      JsonTree head_root, tail_root, root;
+      ElementKind cut;
+      std::size_t head_count = 0;
+      if (parse_native_simdjson_halves(text, size, capacity, &head, &head_root, &tail, &tail_root, &cut, &head_count) ==
+              FastParse::kDone &&
+          head.absorb(std::move(tail), cut) && join_top_levels(JsonView(&head_root, 0), JsonView(&tail_root, 0), &root)) {
+        if (release) release();
+        return head.finish(JsonView(&root, 0));
+      }
+    }
+    if (which != NativeParser::kReferenceOnly) {
       DocumentReader reader(error);
       JsonTree root;
       if (parse_native_simdjson(text, size, capacity, &reader, &root) == FastParse::kDone) {
@@ -1072,21 +1132,6 @@ std::optional<NativeDocument> parse_document(const char* text, std::size_t size,
     if (error) *error = std::string("cannot read the document: ") + e.what();
     return std::nullopt;
   }
-}
-
-// Asks for the buffer's memory in huge pages where the system allows it (Linux's
-// transparent huge pages set to "madvise"): a large file's text then costs a page fault per
-// 2 MiB instead of per 4 KiB, which on a virtual machine is a good part of reading it.
-void advise_huge_pages(char* p, std::size_t n) {
-#ifdef MADV_HUGEPAGE
-  const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
-  const std::uintptr_t first = (std::uintptr_t(p) + page - 1) / page * page;
-  const std::uintptr_t last = (std::uintptr_t(p) + n) / page * page;
-  if (n >= (std::size_t(1) << 22) && last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#else
-  (void)p;
-  (void)n;
-#endif
 }
 
 // A file's bytes, whole, with the padding the fast parser needs after them. Reads up to
@@ -1137,7 +1182,10 @@ std::optional<NativeDocument> read_native(std::string_view text, std::string* er
                std::to_string(kMaxNativeBytes);
     return std::nullopt;
   }
-  if (which == NativeParser::kReferenceOnly) return parse_document(text.data(), text.size(), text.size(), which, error);
+  if (which == NativeParser::kReferenceOnly) {
+    std::string copy(text);
+    return parse_document(copy.data(), copy.size(), copy.size(), which, error);
+  }
   std::string padded;
   padded.reserve(text.size() + simdjson_padding());
   padded.assign(text);

@@ -4,7 +4,7 @@ namespace kintsugi {
 
 class BodyReader {
  public:
-  static std::optional<Body> run(const BodyDescription& d, AssembleError* error);
+  static std::optional<Body> run(BodyDescription&& d, AssembleError* error);
 };
 
 namespace {
@@ -37,7 +37,9 @@ bool slots_for(const std::vector<T>& items, const char* kind, std::size_t* n, As
 
 }  // namespace
 
-std::optional<Body> BodyReader::run(const BodyDescription& d, AssembleError* error) {
+// Takes the description's geometry (moved, not copied: a million edges' curves). The
+// places in messages are spelled only for the element that is wrong.
+std::optional<Body> BodyReader::run(BodyDescription&& d, AssembleError* error) {
   std::size_t nv, ne, nl, nf, ns;
   if (!slots_for(d.vertices, "vertex", &nv, error) || !slots_for(d.edges, "edge", &ne, error) ||
       !slots_for(d.loops, "loop", &nl, error) || !slots_for(d.faces, "face", &nf, error) ||
@@ -78,19 +80,19 @@ std::optional<Body> BodyReader::run(const BodyDescription& d, AssembleError* err
   auto live_f = [&](std::uint32_t i) { return i < nf && b.f_alive_[i]; };
   auto live_s = [&](std::uint32_t i) { return i < ns && b.s_alive_[i]; };
 
-  for (const auto& e : d.edges) {
+  for (auto& e : d.edges) {
     for (int side = 0; side < 2; ++side) {
       const HalfedgeDesc& h = e.he[side];
-      std::string where = "edge " + std::to_string(e.id) + " half-edge " + std::to_string(side);
-      if (!live_v(h.origin)) return fail(error, where, "origin " + std::to_string(h.origin) + " is not a vertex"), std::nullopt;
-      if (!live_h(h.next)) return fail(error, where, "next " + std::to_string(h.next) + " is not a half-edge"), std::nullopt;
-      if (!live_l(h.loop)) return fail(error, where, "loop " + std::to_string(h.loop) + " is not a loop"), std::nullopt;
+      auto where = [&] { return "edge " + std::to_string(e.id) + " half-edge " + std::to_string(side); };
+      if (!live_v(h.origin)) return fail(error, where(), "origin " + std::to_string(h.origin) + " is not a vertex"), std::nullopt;
+      if (!live_h(h.next)) return fail(error, where(), "next " + std::to_string(h.next) + " is not a half-edge"), std::nullopt;
+      if (!live_l(h.loop)) return fail(error, where(), "loop " + std::to_string(h.loop) + " is not a loop"), std::nullopt;
       HalfedgeRec& r = b.halfedges_[2 * e.id + side];
       r.origin = VertexH(h.origin);
       r.next = HalfedgeH(h.next);
       r.loop = LoopH(h.loop);
     }
-    b.curves_[e.id] = e.curve;
+    b.curves_[e.id] = std::move(e.curve);
   }
   // prev is derived from next; a half-edge named as next twice is an error.
   std::vector<std::uint8_t> has_prev(2 * ne, 0);
@@ -104,47 +106,47 @@ std::optional<Body> BodyReader::run(const BodyDescription& d, AssembleError* err
       if (!b.vertices_[b.halfedges_[h].origin.idx()].out.valid()) b.vertices_[b.halfedges_[h].origin.idx()].out = HalfedgeH(h);
     }
   for (const auto& l : d.loops) {
-    std::string where = "loop " + std::to_string(l.id);
+    auto where = [&] { return "loop " + std::to_string(l.id); };
     LoopRec& r = b.loops_[l.id];
     if (l.face) {
-      if (!live_f(*l.face)) return fail(error, where, "face " + std::to_string(*l.face) + " is not a face"), std::nullopt;
+      if (!live_f(*l.face)) return fail(error, where(), "face " + std::to_string(*l.face) + " is not a face"), std::nullopt;
       r.face = FaceH(*l.face);
     }
     if (l.first.has_value() == l.lone.has_value())
-      return fail(error, where, "needs exactly one of a first half-edge and a lone vertex"), std::nullopt;
+      return fail(error, where(), "needs exactly one of a first half-edge and a lone vertex"), std::nullopt;
     if (l.first) {
-      if (!live_h(*l.first)) return fail(error, where, "first " + std::to_string(*l.first) + " is not a half-edge"), std::nullopt;
+      if (!live_h(*l.first)) return fail(error, where(), "first " + std::to_string(*l.first) + " is not a half-edge"), std::nullopt;
       r.first = HalfedgeH(*l.first);
     } else {
-      if (!live_v(*l.lone)) return fail(error, where, "lone vertex " + std::to_string(*l.lone) + " is not a vertex"), std::nullopt;
+      if (!live_v(*l.lone)) return fail(error, where(), "lone vertex " + std::to_string(*l.lone) + " is not a vertex"), std::nullopt;
       r.lone = VertexH(*l.lone);
     }
   }
-  for (const auto& f : d.faces) {
-    std::string where = "face " + std::to_string(f.id);
-    if (!live_s(f.shell)) return fail(error, where, "shell " + std::to_string(f.shell) + " is not a shell"), std::nullopt;
-    if (f.loops.empty()) return fail(error, where, "has no loops"), std::nullopt;
+  for (auto& f : d.faces) {
+    auto where = [&] { return "face " + std::to_string(f.id); };
+    if (!live_s(f.shell)) return fail(error, where(), "shell " + std::to_string(f.shell) + " is not a shell"), std::nullopt;
+    if (f.loops.empty()) return fail(error, where(), "has no loops"), std::nullopt;
     FaceRec& r = b.faces_[f.id];
     r.shell = ShellH(f.shell);
     r.outer = LoopH(f.loops[0]);
     for (std::size_t i = 0; i < f.loops.size(); ++i) {
       std::uint32_t l = f.loops[i];
-      if (!live_l(l)) return fail(error, where, "loop " + std::to_string(l) + " is not a loop"), std::nullopt;
+      if (!live_l(l)) return fail(error, where(), "loop " + std::to_string(l) + " is not a loop"), std::nullopt;
       if (b.loops_[l].face != FaceH(f.id))
-        return fail(error, where, "loop " + std::to_string(l) + " does not name this face"), std::nullopt;
+        return fail(error, where(), "loop " + std::to_string(l) + " does not name this face"), std::nullopt;
       if (b.loops_[l].next_in_face.valid() || (i > 0 && LoopH(l) == r.outer))
-        return fail(error, where, "loop " + std::to_string(l) + " is listed twice"), std::nullopt;
+        return fail(error, where(), "loop " + std::to_string(l) + " is listed twice"), std::nullopt;
       b.loops_[l].next_in_face = i + 1 < f.loops.size() ? LoopH(f.loops[i + 1]) : LoopH{};
     }
-    b.surfaces_[f.id] = f.surface;
+    b.surfaces_[f.id] = std::move(f.surface);
     b.senses_[f.id] = f.same_sense ? 1 : 0;
     b.shells_[f.shell].faces++;
   }
   return b;
 }
 
-std::optional<Body> assemble_references(const BodyDescription& d, AssembleError* error) {
-  return BodyReader::run(d, error);
+std::optional<Body> assemble_references(BodyDescription d, AssembleError* error) {
+  return BodyReader::run(std::move(d), error);
 }
 
 BodyDescription describe(const Body& b) {

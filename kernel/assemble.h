@@ -68,8 +68,9 @@ struct AssembleError {
 
 // The first half of assemble(): builds the body after checking ids and references only,
 // or says what is wrong. Its loops and rotations are NOT yet known to close: only
-// assemble() (invariants/assemble.h) hands out a body fit for the operators.
-std::optional<Body> assemble_references(const BodyDescription& d, AssembleError* error);
+// assemble() (invariants/assemble.h) hands out a body fit for the operators. The body
+// takes the description's geometry: pass it with std::move where it is not needed again.
+std::optional<Body> assemble_references(BodyDescription d, AssembleError* error);
 
 // The description of a body (live elements only, ids = handles): what writers write.
 BodyDescription describe(const Body& b);

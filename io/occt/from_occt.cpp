@@ -856,7 +856,7 @@ std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& loc
   }
   for (std::size_t s = 0; s < ns; ++s) d.shells.push_back({std::uint32_t(s), genus[s]});
   AssembleError ae;
-  std::optional<Body> body = assemble(d, &ae);
+  std::optional<Body> body = assemble(std::move(d), &ae);
   if (!body) {
     *error = "the topology read is inconsistent: " + (ae.element.empty() ? "" : ae.element + ": ") + ae.message;
     return std::nullopt;

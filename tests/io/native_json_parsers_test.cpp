@@ -1,8 +1,9 @@
 // The native reader's two parsers agree (io/native_json_parse.h): simdjson first, falling
-// back on nlohmann's, against nlohmann's alone — the same verdict, the same message, the
-// same body, meta and units — on hand-picked JSON corner cases and on random documents
-// damaged the ways files get damaged. And the fast parser is really the one that reads
-// ordinary documents (else the agreement would be the reference agreeing with itself).
+// back on nlohmann's, whole or in two halves on two threads, against nlohmann's alone —
+// the same verdict, the same message, the same body, meta and units — on hand-picked JSON
+// corner cases and on random documents damaged the ways files get damaged. And the fast
+// parser is really the one that reads ordinary documents (else the agreement would be the
+// reference agreeing with itself); native_json_halves_test.cpp checks the same of halves.
 #include "io/native_json.h"
 #include "io/native_json_parse.h"
 #include "kernel/builders.h"
@@ -18,19 +19,27 @@
 namespace kintsugi::io {
 namespace {
 
-// "" when both parsers say the same of `text`, else what differs.
+// "" when the fast parser (whole, then in halves) says the same of `text` as the
+// reference, else what differs.
 std::string disagreement(const std::string& text) {
-  std::string fast_error, reference_error;
-  auto fast = read_native(text, &fast_error, NativeParser::kSimdjsonFirst);
+  std::string reference_error;
   auto reference = read_native(text, &reference_error, NativeParser::kReferenceOnly);
-  if (bool(fast) != bool(reference))
-    return fast ? "simdjson accepted, the reference refused: " + reference_error
-                : "the reference accepted, simdjson refused: " + fast_error;
-  if (!fast) return fast_error == reference_error ? "" : "messages differ:\n  " + fast_error + "\n  " + reference_error;
-  std::string why;
-  if (!fast->body.equals(reference->body, &why)) return "bodies differ: " + why;
-  if (fast->meta != reference->meta) return "meta differs: " + fast->meta.dump() + " vs " + reference->meta.dump();
-  if (fast->units != reference->units) return "units differ";
+  for (NativeParser parser : {NativeParser::kSimdjsonFirst, NativeParser::kSimdjsonHalves}) {
+    const std::string who = parser == NativeParser::kSimdjsonFirst ? "simdjson" : "simdjson in halves";
+    std::string fast_error;
+    auto fast = read_native(text, &fast_error, parser);
+    if (bool(fast) != bool(reference))
+      return fast ? who + " accepted, the reference refused: " + reference_error
+                  : "the reference accepted, " + who + " refused: " + fast_error;
+    if (!fast) {
+      if (fast_error != reference_error) return who + ": messages differ:\n  " + fast_error + "\n  " + reference_error;
+      continue;
+    }
+    std::string why;
+    if (!fast->body.equals(reference->body, &why)) return who + ": bodies differ: " + why;
+    if (fast->meta != reference->meta) return who + ": meta differs: " + fast->meta.dump() + " vs " + reference->meta.dump();
+    if (fast->units != reference->units) return who + ": units differ";
+  }
   return "";
 }
 
