@@ -51,8 +51,9 @@ const std::string kHelp =
     "                   chromium, or the browser named in KINTSUGI_CHROMIUM)\n"
     "  --paranoid       also check the whole model's topology after every repair (for\n"
     "                   debugging; quadratic in the model's size)\n\n"
-    "Environment: KINTSUGI_THREADS=N (1-64) threads for measuring faces and edges in the\n"
-    "whole-model detection (default: the machine's, at most 8); the result is the same for any N.\n"
+    "Environment: KINTSUGI_THREADS=N (1-64) threads for reading a large .json model (two at\n"
+    "most) and for measuring faces and edges in the whole-model detection (default: the\n"
+    "machine's, at most 8); the result is the same for any N.\n"
     "Exit: 0 written (whether or not every problem was repaired); 2 bad input or usage.\n";
 
 }  // namespace

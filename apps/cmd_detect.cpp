@@ -26,8 +26,9 @@ const char* kHelp =
     "           when high or no defects (unless --tol is given)\n"
     "  --json   one JSON document: {\"tolerance\", \"problems\": [{\"type\", \"elements\",\n"
     "           \"measure\", \"subcase\"}], \"counts\": {every type: n}}\n\n"
-    "Environment: KINTSUGI_THREADS=N (1-64) threads for measuring faces and edges in the\n"
-    "whole-model detection (default: the machine's, at most 8); the result is the same for any N.\n"
+    "Environment: KINTSUGI_THREADS=N (1-64) threads for reading a large .json model (two at\n"
+    "most) and for measuring faces and edges in the whole-model detection (default: the\n"
+    "machine's, at most 8); the result is the same for any N.\n"
     "Exit: 0 whether or not problems were found; 2 unreadable input or bad usage.\n";
 }
 

@@ -43,7 +43,7 @@ struct NativeDocument {
 // back on nlohmann's for anything out of the ordinary (a syntax error, a duplicate key, deep
 // nesting), so a refusal is worded the same either way (io/native_json_parse.h).
 // A document of 8 MiB or more is parsed by simdjson in two halves on two threads, where
-// there are two cores (io/native_json_parse.h: cut between two elements near the middle;
+// two may be used (KINTSUGI_THREADS, else the machine's hardware threads) (io/native_json_parse.h: cut between two elements near the middle;
 // anything out of the ordinary reads it whole again), which gives the same document.
 // kSimdjsonHalves: in two halves whatever its size, for the tests and the fuzzer.
 // kReferenceOnly: nlohmann's alone, the reference the tests and the fuzzer compare with.

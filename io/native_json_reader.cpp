@@ -8,6 +8,7 @@
 
 #include "invariants/assemble.h"
 #include "kernel/huge_pages.h"
+#include "kernel/threads.h"
 #include "geometry/freeform.h"
 
 #include <fcntl.h>
@@ -24,7 +25,6 @@
 #include <iterator>
 #include <memory>
 #include <numbers>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -1083,12 +1083,13 @@ bool join_top_levels(JsonView head, JsonView tail, JsonTree* out) {
   return true;
 }
 
-// Documents from this size on are read in two halves at once, where there are two cores.
+// Documents from this size on are read in two halves at once, where two threads may be
+// used (KINTSUGI_THREADS, else the machine's).
 constexpr std::size_t kHalvesFromBytes = std::size_t(8) << 20;
 
 bool read_in_halves(std::size_t size, NativeParser which) {
   if (which == NativeParser::kSimdjsonHalves) return true;
-  return which == NativeParser::kSimdjsonFirst && size >= kHalvesFromBytes && std::thread::hardware_concurrency() >= 2;
+  return which == NativeParser::kSimdjsonFirst && size >= kHalvesFromBytes && threads_from_environment() >= 2;
 }
 
 // The whole reader over text[0, size), with simdjson_padding() readable bytes past the
