@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <variant>
 
@@ -29,14 +30,46 @@ double chordal_slack(const geo::Curve& c) {
   return 0.0;
 }
 
-// The touched elements and their surroundings (see the header).
+// The touched elements and their surroundings (see the header). `near`: the faces with
+// many loops, each with the box of what changed on it; `whole`: those of them that are
+// nevertheless grown whole (their surface was set, or the caller did not say).
 struct Grown {
   std::set<VertexH> vs;
   std::set<EdgeH> es;
   std::set<FaceH> fs;
+  std::map<FaceH, Region::Near> near;
+  std::set<FaceH> whole;
 };
 
-Grown grow(const Body& b, const Region& r) {
+// For face f, when it has more than kManyLoops loops: the box of the edges on it that the
+// repair changed (those of r.edges and those at r.vertices) and of the lone vertices of r,
+// grown by the tolerance (see the header). Found from r's elements, not f's loops.
+std::optional<geo::Box> near_change(const Body& b, const Region& r, FaceH f, const geo::Tolerances& tol) {
+  std::vector<LoopH> ls = b.loops_of(f);
+  if (ls.size() <= kManyLoops) return std::nullopt;
+  const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
+  geo::Box box;
+  auto add_edge = [&](EdgeH e) {
+    for (unsigned side = 0; side < 2; ++side)
+      if (HalfedgeH h = halfedge_of(e, side); b.face(h) == f) {
+        geo::Box hb = halfedge_box(b, h, chordal);
+        box.add(hb.min);
+        box.add(hb.max);
+      }
+  };
+  for (EdgeH e : r.edges)
+    if (b.alive(e)) add_edge(e);
+  for (VertexH v : r.vertices) {
+    if (!b.alive(v)) continue;
+    bool any = false;
+    for (HalfedgeH h : b.outgoing(v)) add_edge(edge_of(h)), any = true;
+    if (!any) box.add(b.point(v));  // a lone vertex (of f or elsewhere: a box that is too big is safe)
+  }
+  if (!box.empty()) box = geo::Box{box.min.array() - tol.length, box.max.array() + tol.length};
+  return box;
+}
+
+Grown grow(const Body& b, const Region& r, const geo::Tolerances& tol) {
   Grown g;
   for (VertexH v : r.vertices)
     if (b.alive(v)) {
@@ -47,17 +80,22 @@ Grown grow(const Body& b, const Region& r) {
     if (b.alive(e)) g.es.insert(e);
   for (FaceH f : r.faces)
     if (b.alive(f)) g.fs.insert(f);
-  for (EdgeH e : std::set<EdgeH>(g.es))
+  for (EdgeH e : g.es)
     for (unsigned s = 0; s < 2; ++s)
       if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) g.fs.insert(f);
-  for (FaceH f : g.fs)
-    for (LoopH l : b.loops_of(f)) {
+  for (FaceH f : g.fs) {
+    std::optional<geo::Box> box = near_change(b, r, f, tol);
+    if (box) g.near[f] = {*box, loops_near(b, f, *box)};
+    const bool whole = !box || !r.surfaces_set || r.surfaces_set->count(f);
+    if (box && whole) g.whole.insert(f);
+    for (LoopH l : whole ? b.loops_of(f) : g.near[f].loops) {
       if (b.is_lone(l)) {
         g.vs.insert(b.lone_vertex(l));
         continue;
       }
       for (HalfedgeH h : b.loop_halfedges(l)) g.es.insert(edge_of(h));
     }
+  }
   for (EdgeH e : g.es) {
     HalfedgeH h = halfedge_of(e, 0);
     g.vs.insert(b.origin(h));
@@ -105,13 +143,13 @@ struct FaceLoops {
   std::vector<LoopH> closed_loop;
 };
 
-FaceLoops map_loops(const Body& b, FaceH f, double chordal, double near_singular) {
+FaceLoops map_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, double chordal, double near_singular) {
   FaceLoops out;
   const geo::Surface& s = b.surface(f);
   const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
   const std::vector<geo::Vec3> singular = singular_points(s);
   std::uint32_t li = 0;
-  for (LoopH l : b.loops_of(f)) {
+  for (LoopH l : loops) {
     if (b.is_lone(l)) {
       ++li;
       continue;
@@ -173,10 +211,12 @@ double signed_area(const std::vector<geo::Vec2>& p) {
   return 0.5 * a;
 }
 
-void check_face_loops(const Body& b, FaceH f, const geo::Tolerances& tol, std::vector<Violation>& out) {
+// The loops' crossings and orientations, among `loops` of f.
+void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, const geo::Tolerances& tol,
+                      std::vector<Violation>& out) {
   const geo::Surface& s = b.surface(f);
   const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
-  const FaceLoops fl = map_loops(b, f, chordal, std::max(tol.precision * 100, chordal));
+  const FaceLoops fl = map_loops(b, f, loops, chordal, std::max(tol.precision * 100, chordal));
   const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
 
   // Margin in parameter units: the precision over the surface's scale for angles, the
@@ -254,6 +294,30 @@ void check_face_loops(const Body& b, FaceH f, const geo::Tolerances& tol, std::v
 
 }  // namespace
 
+std::vector<LoopH> loops_near(const Body& b, FaceH f, const geo::Box& box) {
+  std::vector<LoopH> out;
+  const double chordal = box.empty() ? 1.0 : std::max(box.diagonal() * 1e-3, 1e-9);
+  for (LoopH l : b.loops_of(f)) {
+    if (b.is_outer(l)) {
+      out.push_back(l);
+      continue;
+    }
+    if (box.empty()) continue;
+    if (b.is_lone(l)) {
+      if (box.contains(b.point(b.lone_vertex(l)))) out.push_back(l);
+      continue;
+    }
+    geo::Box lb;
+    for (HalfedgeH h : b.loop_halfedges(l)) {
+      geo::Box hb = halfedge_box(b, h, chordal);
+      lb.add(hb.min);
+      lb.add(hb.max);
+    }
+    if (geo::box_gap(lb, box) == 0.0) out.push_back(l);
+  }
+  return out;
+}
+
 Region whole_body(const Body& b) {
   Region r;
   for (VertexH v : b.vertices()) r.vertices.insert(v);
@@ -269,7 +333,7 @@ double lies_on_limit(const geo::Tolerances& tol, double input_deviation) {
 std::vector<Violation> loop_violations(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol) {
   std::vector<Violation> out;
   for (FaceH f : faces)
-    if (b.alive(f) && has_surface(b, f)) check_face_loops(b, f, tol, out);
+    if (b.alive(f) && has_surface(b, f)) check_face_loops(b, f, b.loops_of(f), tol, out);
   return out;
 }
 
@@ -277,11 +341,14 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
                                          double coincide_within) {
   if (!(coincide_within >= 0)) coincide_within = lies_on;
   std::vector<Violation> out;
-  const Grown g = grow(b, r);
-  auto off = [&](double d, const char* inv, std::vector<std::string> els, const std::string& what) {
+  Grown g = grow(b, r, tol);
+  // The message is spelled only for a violation: the region of a repair beside a plate
+  // has hundreds of thousands of distances to check.
+  auto off = [&](double d, const char* inv, auto els, auto what) {
     if (!std::isfinite(d)) d = HUGE_VAL;
-    if (d > lies_on) out.push_back({inv, std::move(els), what + " is " + fmt(d) + " away (limit " + fmt(lies_on) + ")", d});
+    if (d > lies_on) out.push_back({inv, els(), what() + " is " + fmt(d) + " away (limit " + fmt(lies_on) + ")", d});
   };
+  using Names = std::vector<std::string>;
   for (FaceH f : g.fs)
     if (!has_surface(b, f)) out.push_back({"face_without_surface", {f.str()}, f.str() + " has no surface", 0.0});
   for (EdgeH e : g.es)
@@ -292,11 +359,14 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
     const geo::Vec3& p = b.point(v);
     for (HalfedgeH h : b.outgoing(v)) {
       EdgeH e = edge_of(h);
-      off(geo::closest_point(b.curve(e), p).distance - chordal_slack(b.curve(e)), "vertex_on_curve", {v.str(), e.str()},
-          v.str() + " from the curve of " + e.str());
+      off(
+          geo::closest_point(b.curve(e), p).distance - chordal_slack(b.curve(e)), "vertex_on_curve",
+          [&] { return Names{v.str(), e.str()}; }, [&] { return v.str() + " from the curve of " + e.str(); });
       if (!b.is_border(h))
-        off(std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface", {v.str(), b.face(h).str()},
-            v.str() + " from the surface of " + b.face(h).str());
+        off(
+            std::abs(geo::signed_distance(b.surface(b.face(h)), p)), "vertex_on_surface",
+            [&] { return Names{v.str(), b.face(h).str()}; },
+            [&] { return v.str() + " from the surface of " + b.face(h).str(); });
     }
   }
   for (EdgeH e : g.es) {
@@ -321,13 +391,19 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
       FaceH f = b.face(side);
       double worst = 0.0;
       for (const geo::Vec3& q : probes) worst = std::max(worst, std::abs(geo::signed_distance(b.surface(f), q)));
-      off(worst - chordal_slack(c), "edge_on_surface", {e.str(), f.str()}, e.str() + " from the surface of " + f.str());
+      off(
+          worst - chordal_slack(c), "edge_on_surface", [&] { return Names{e.str(), f.str()}; },
+          [&] { return e.str() + " from the surface of " + f.str(); });
     }
   }
-  std::vector<Violation> loops = loop_violations(b, g.fs, tol);
-  out.insert(out.end(), loops.begin(), loops.end());
+  // A face with many loops: those near what changed (see the header).
+  for (FaceH f : g.fs) {
+    if (!has_surface(b, f)) continue;
+    auto it = g.near.find(f);
+    check_face_loops(b, f, it == g.near.end() ? b.loops_of(f) : it->second.loops, tol, out);
+  }
   if (out.empty() && g_external) {
-    Region grown{g.vs, g.es, g.fs};
+    Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt};
     if (std::string why = g_external(b, grown); !why.empty()) out.push_back({"external_check", {}, why, 0.0});
   }
   return out;

@@ -18,12 +18,31 @@
 //     (with OpenCASCADE: that the model converts, and BRepCheck of the touched faces).
 // The region is the given elements and everything around them: the edges at a touched
 // vertex, the faces beside a touched edge, and the vertices and edges of touched faces.
+//
+// A face with many loops (a plate with a hole per feature) is checked near what changed
+// only: OpenCASCADE classifies every wire of a face against every other, so one repair
+// beside a plate with 27,000 holes took an hour and a half, and checking every vertex of
+// such a plate after each repair beside it costs as much as the repair many times over.
+// "Near" is loops_near of the box of the edges the repair changed (an edge of the
+// region, or one at a vertex of the region), grown by the tolerance. The loops left out
+// have edges that are the same curves between the same points as before the repair:
+//   * when the face's surface was not set by the repair (Region::surfaces_set), they lie
+//     on it as they did, so they are not grown into the region at all;
+//   * when it was (or the caller does not say), all its vertices and edges are checked
+//     on the new surface, and then only the loop checks and the external check look
+//     near the change.
+// Either way a crossing or a nesting among the loops left out is one the face had
+// before; a new crossing has a changed edge on one side, and so a loop near it on the
+// other. What the gate promises, that a repair makes nothing worse, still holds.
 #pragma once
 
+#include "geometry/box.h"
 #include "geometry/tolerance.h"
 #include "invariants/violation.h"
 #include "kernel/body.h"
 
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -34,7 +53,25 @@ struct Region {
   std::set<VertexH> vertices;
   std::set<EdgeH> edges;
   std::set<FaceH> faces;
+  // Only in the region given to the external check: faces with more than kManyLoops
+  // loops, each with the box (grown by the tolerance) of the edges on it that the repair
+  // changed and loops_near(b, f, box), the loops it is checked with.
+  struct Near {
+    geo::Box box;
+    std::vector<LoopH> loops;
+  };
+  std::map<FaceH, Near> near;
+  // The faces whose surface the repair set, when the caller knows (from the journal);
+  // nullopt: any face may have a new surface (see the header).
+  std::optional<std::set<FaceH>> surfaces_set;
 };
+
+// A face with more loops than this is checked near the change only (see above).
+inline constexpr std::size_t kManyLoops = 16;
+
+// The outer loop of f and every other loop whose box meets `box` (lone vertices: when in
+// the box), outer first.
+std::vector<LoopH> loops_near(const Body& b, FaceH f, const geo::Box& box);
 
 // The whole body as a region (for `kintsugi check` and tests).
 Region whole_body(const Body& b);

@@ -68,6 +68,15 @@ struct Unsettled {
   detail::OriginalFaces original;
 };
 
+// The faces whose surface was set from journal entry `from` on: the validity gate checks
+// those whole (invariants/region_validity.h).
+std::set<FaceH> surfaces_set_since(const Journal& j, std::size_t from) {
+  std::set<FaceH> out;
+  for (std::size_t i = from; i < j.size(); ++i)
+    if (const auto* r = std::get_if<SetSurfaceRecord>(&j.entries()[i].record)) out.insert(r->face);
+  return out;
+}
+
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
                     const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
@@ -115,8 +124,9 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   if (why.empty()) {
     const double at_precision = options.lies_on > 0 ? options.lies_on : tol.precision;
     const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
-    std::string invalid =
-        region_validity(b, {touched.vertices, touched.edges, touched.faces}, tol, lies_on, at_precision);
+    std::string invalid = region_validity(
+        b, {touched.vertices, touched.edges, touched.faces, {}, surfaces_set_since(b.journal(), tx.first_entry())}, tol,
+        lies_on, at_precision);
     if (!invalid.empty()) why = "the result would not be valid: " + invalid;
   }
   if (why.empty() && options.check_topology_each_repair) {

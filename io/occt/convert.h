@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -69,8 +70,12 @@ struct BuiltShape {
 // Builds the shape with one shared TopoDS_Edge per edge and one TopoDS_Vertex per
 // vertex, so OpenCASCADE sees exactly our topology. Refuses (nullopt, *error) a body
 // with a face or edge without geometry, or geometry OpenCASCADE rejects.
-// With `only`, just those faces and their edges, as a compound of faces (no shells).
-std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only = nullptr);
+// With `only`, just those faces and their edges, as a compound of faces (no shells);
+// with `loops` as well, a face that has an entry there is made with those loops alone
+// (and only their edges are made).
+using LoopSubsets = std::map<FaceH, std::vector<LoopH>>;
+std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only = nullptr,
+                                   const LoopSubsets* loops = nullptr);
 
 // Names a face for messages ("face #12 (STEP entity #345)"); given the face's 1-based
 // index in the shape's face map.

@@ -507,18 +507,29 @@ struct RegionCheckInput {
 };
 RegionCheckInput g_input;
 
-bool face_passes_brepcheck(const Body& b, FaceH f) {
+// `near`: only the loops of f near that box (Region::near).
+bool face_passes_brepcheck(const Body& b, FaceH f, const geo::Box* near = nullptr) {
   const std::set<FaceH> one{f};
+  occt::LoopSubsets loops;
+  if (near) loops[f] = loops_near(b, f, *near);
   std::string why;
-  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one);
+  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one, &loops);
   return s && BRepCheck_Analyzer(s->face[f.idx()]).IsValid() == Standard_True;
 }
 
 // Whether face f of the model before beautify failed BRepCheck: then the same face after a
-// repair may fail too.
-bool failed_before(FaceH f) {
+// repair may fail too. A face checked near a change only (`near`) is compared with the
+// same place of the face before, which is not remembered.
+bool failed_before(FaceH f, const geo::Box* near) {
   const Body* in = g_input.body.get();
   if (!in || !in->alive(f)) return false;  // a new face: it must pass
+  if (near) {
+    try {
+      return !face_passes_brepcheck(*in, f, near);
+    } catch (const Standard_Failure&) {
+      return true;
+    }
+  }
   auto it = g_input.face_valid.find(f.idx());
   if (it == g_input.face_valid.end()) {
     bool valid = true;
@@ -536,11 +547,14 @@ std::string occt_region_check(const Body& b, const Region& r) {
   silence_occt();
   try {
     std::string why;
-    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces);
+    occt::LoopSubsets loops;
+    for (const auto& [f, near] : r.near) loops[f] = near.loops;
+    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces, &loops);
     if (!s) return "the model could not be written: " + why;
     for (FaceH f : r.faces) {
       BRepCheck_Analyzer ana(s->face[f.idx()]);
-      if (ana.IsValid() || failed_before(f)) continue;
+      auto near = r.near.find(f);
+      if (ana.IsValid() || failed_before(f, near == r.near.end() ? nullptr : &near->second.box)) continue;
       TopTools_IndexedMapOfShape all;
       TopExp::MapShapes(s->face[f.idx()], all);
       all.Add(s->face[f.idx()]);

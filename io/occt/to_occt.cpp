@@ -225,7 +225,8 @@ std::string status_of(BRepBuilderAPI_EdgeError e) {
 
 class Builder {
  public:
-  explicit Builder(const Body& b, const std::set<FaceH>* only = nullptr) : b_(b), only_(only) {}
+  explicit Builder(const Body& b, const std::set<FaceH>* only = nullptr, const LoopSubsets* loops = nullptr)
+      : b_(b), only_(only), loops_(loops) {}
 
   std::optional<BuiltShape> run(std::string* error) {
     if (only_) return run_faces(error);
@@ -521,7 +522,7 @@ class Builder {
     TopoDS_Face tf;
     bb_.MakeFace(tf, gs, kTol);
     std::vector<std::pair<LoopH, TopoDS_Wire>> wires;
-    for (LoopH l : b_.loops_of(f)) {
+    for (LoopH l : loops_of(f)) {
       if (b_.is_lone(l)) {
         // A lone vertex: OpenCASCADE has no loop of a single vertex in a face; the
         // vertex is added to the face as an INTERNAL sub-shape.
@@ -604,7 +605,7 @@ class Builder {
     std::set<EdgeH> edges;
     std::set<VertexH> vertices;
     for (FaceH f : *only_)
-      for (LoopH l : b_.loops_of(f))
+      for (LoopH l : loops_of(f))
         if (b_.is_lone(l)) {
           vertices.insert(b_.lone_vertex(l));
         } else {
@@ -627,19 +628,28 @@ class Builder {
   }
 
   const Body& b_;
+  // The loops of f to make: those of loops_ where f has an entry, else all.
+  std::vector<LoopH> loops_of(FaceH f) const {
+    if (loops_)
+      if (auto it = loops_->find(f); it != loops_->end()) return it->second;
+    return b_.loops_of(f);
+  }
+
   const std::set<FaceH>* only_ = nullptr;
+  const LoopSubsets* loops_ = nullptr;
   BRep_Builder bb_;
   BuiltShape out_;
 };
 
 }  // namespace
 
-std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only) {
+std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only,
+                                   const LoopSubsets* loops) {
   geo::occt::register_freeform_backend();  // as in from_shape
   std::string local;
   if (!error) error = &local;
   try {
-    return Builder(b, only).run(error);
+    return Builder(b, only, loops).run(error);
   } catch (const Standard_Failure& e) {
     *error = std::string("OpenCASCADE failed while building the shape: ") + e.GetMessageString();
   } catch (const std::exception& e) {
