@@ -28,13 +28,15 @@
 //     Last line: JSON {"faces", "bytes", "model_seconds", "model_rss_bytes", "steps":
 //     {step: {"seconds", "peak_rss_bytes"}}, "read_back_equal"}.
 //
-//   kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--detect-only]
+//   kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--on-plate K] [--detect-only]
 //     Detection and beautify on the scalable family (zoo::family; default sizes 10^4 and
 //     10^5 faces, rate 0.01, seed 1), each size in a child process of its own: the model
 //     is built, detected (timed) and beautified as `kintsugi beautify` does it
 //     (api::beautify: the pipeline with the whole-body check once at the end and the
 //     validity gate's OpenCASCADE half where it is built). --detect-only stops after
-//     the detection.
+//     the detection. --on-plate K adds K defects on the plate (the face with a hole per
+//     feature; short edge chains and mergeable edges, taking turns), where every repair
+//     meets the face with the most loops in the model (issue 18).
 //     Prints per size the seconds of detection, of beautify and of each pass, the peak
 //     resident set size against the size after building the model; then the exponent
 //     of a least-squares fit of log(seconds) on log(faces). Last line: JSON {"sizes":
@@ -88,11 +90,12 @@ int usage(std::ostream& os, int code) {
         "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
         "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
         "          prints each step's time and peak memory (each step runs in a child process).\n"
-        "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--detect-only]\n"
+        "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--on-plate K] [--detect-only]\n"
         "  beautify  Detects and beautifies the scalable family at each size (default\n"
         "          10000,100000; rate 0.01), each in a child process, as `kintsugi beautify`\n"
         "          does (the validity gate with OpenCASCADE's half where it is built); prints\n"
         "          seconds per pass, peak memory and the fitted exponent of time against faces.\n"
+        "          --on-plate K   also inject K defects on the plate, the face with a hole per feature\n"
         "          --detect-only  time the whole-model detection only\n"
         "       kintsugi-bench occt-heal [--faces N] [--rate R] [--seed S] [--dir D]\n"
         "  occt-heal  Writes the family with N faces (default 10000; rate 0.01) to STEP in D\n"
@@ -232,11 +235,32 @@ double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) 
   return d > 0 ? (n * sxy - sx * sy) / d : 0.0;
 }
 
+// Injects k defects on the face with the most loops (the family's plate), short edge
+// chains and mergeable edges taking turns; returns how many found a place.
+long long inject_on_plate(kintsugi::zoo::ZooModel& m, long long k) {
+  using namespace kintsugi;
+  FaceH plate;
+  std::size_t most = 0;
+  for (FaceH f : m.body.faces())
+    if (std::size_t l = m.body.loops_of(f).size(); l > most) most = l, plate = f;
+  long long done = 0;
+  for (long long i = 0; i < k; ++i) {
+    const ProblemType t = i % 2 ? ProblemType::mergeable_edges : ProblemType::short_edge_chain;
+    std::string why;
+    if (auto d = zoo::inject(m.body, t, std::uint64_t(1 + i), plate.str(), m.tolerance, &why)) {
+      m.defects.push_back(d->defect);
+      ++done;
+    }
+  }
+  return done;
+}
+
 int bench_beautify(int argc, char** argv) {
   std::vector<long long> sizes{10'000, 100'000};
   long long seed = 1;
   double rate = 0.01;
   bool detect_only = false;
+  long long on_plate = 0;
   for (int i = 2; i < argc; ++i) {
     std::string a = argv[i];
     auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -272,6 +296,14 @@ int bench_beautify(int argc, char** argv) {
         std::cerr << "kintsugi-bench beautify: --rate needs a number from 0 to 1\n";
         return 2;
       }
+    } else if (a == "--on-plate") {
+      char* end = nullptr;
+      std::string v = value();
+      on_plate = std::strtoll(v.c_str(), &end, 10);
+      if (v.empty() || *end != '\0' || on_plate < 0 || on_plate > 100'000) {
+        std::cerr << "kintsugi-bench beautify: --on-plate needs a whole number from 0 to 100000\n";
+        return 2;
+      }
     } else if (a == "--detect-only") {
       detect_only = true;
     } else if (a == "--help") {
@@ -291,6 +323,7 @@ int bench_beautify(int argc, char** argv) {
       auto t0 = std::chrono::steady_clock::now();
       zoo::ZooModel m = zoo::family(std::size_t(n), rate, std::uint64_t(seed));
       nlohmann::ordered_json j;
+      if (on_plate > 0) j["on_plate"] = inject_on_plate(m, on_plate);
       j["faces"] = m.body.counts().faces;
       j["build_seconds"] = seconds_since(t0);
       j["model_rss_bytes"] = current_rss_bytes();
@@ -326,6 +359,7 @@ int bench_beautify(int argc, char** argv) {
       out["sizes"].push_back(r);
       continue;
     }
+    if (r.contains("on_plate")) std::cout << r["on_plate"] << " defects on the plate; ";
     std::cout << r["faces"] << " faces: detect " << r["detect_seconds"] << " s (" << r["problems"]
               << " problems), beautify " << r["beautify_seconds"] << " s (" << r["repaired"] << " repaired, "
               << r["not_repaired"] << " not), peak RSS " << r["peak_rss_bytes"].get<double>() / 1e6 << " MB (model "

@@ -41,34 +41,6 @@ struct Grown {
   std::set<FaceH> whole;
 };
 
-// For face f, when it has more than kManyLoops loops: the box of the edges on it that the
-// repair changed (those of r.edges and those at r.vertices) and of the lone vertices of r,
-// grown by the tolerance (see the header). Found from r's elements, not f's loops.
-std::optional<geo::Box> near_change(const Body& b, const Region& r, FaceH f, const geo::Tolerances& tol) {
-  std::vector<LoopH> ls = b.loops_of(f);
-  if (ls.size() <= kManyLoops) return std::nullopt;
-  const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
-  geo::Box box;
-  auto add_edge = [&](EdgeH e) {
-    for (unsigned side = 0; side < 2; ++side)
-      if (HalfedgeH h = halfedge_of(e, side); b.face(h) == f) {
-        geo::Box hb = halfedge_box(b, h, chordal);
-        box.add(hb.min);
-        box.add(hb.max);
-      }
-  };
-  for (EdgeH e : r.edges)
-    if (b.alive(e)) add_edge(e);
-  for (VertexH v : r.vertices) {
-    if (!b.alive(v)) continue;
-    bool any = false;
-    for (HalfedgeH h : b.outgoing(v)) add_edge(edge_of(h)), any = true;
-    if (!any) box.add(b.point(v));  // a lone vertex (of f or elsewhere: a box that is too big is safe)
-  }
-  if (!box.empty()) box = geo::Box{box.min.array() - tol.length, box.max.array() + tol.length};
-  return box;
-}
-
 Grown grow(const Body& b, const Region& r, const geo::Tolerances& tol) {
   Grown g;
   for (VertexH v : r.vertices)
@@ -84,7 +56,7 @@ Grown grow(const Body& b, const Region& r, const geo::Tolerances& tol) {
     for (unsigned s = 0; s < 2; ++s)
       if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) g.fs.insert(f);
   for (FaceH f : g.fs) {
-    std::optional<geo::Box> box = near_change(b, r, f, tol);
+    std::optional<geo::Box> box = near_change(b, r.vertices, r.edges, f, tol);
     if (box) g.near[f] = {*box, loops_near(b, f, *box)};
     const bool whole = !box || !r.surfaces_set || r.surfaces_set->count(f);
     if (box && whole) g.whole.insert(f);
@@ -316,6 +288,33 @@ std::vector<LoopH> loops_near(const Body& b, FaceH f, const geo::Box& box) {
     if (geo::box_gap(lb, box) == 0.0) out.push_back(l);
   }
   return out;
+}
+
+// Found from the changed elements, not f's loops (a plate has tens of thousands).
+std::optional<geo::Box> near_change(const Body& b, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges,
+                                    FaceH f, const geo::Tolerances& tol) {
+  std::vector<LoopH> ls = b.loops_of(f);
+  if (ls.size() <= kManyLoops) return std::nullopt;
+  const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
+  geo::Box box;
+  auto add_edge = [&](EdgeH e) {
+    for (unsigned side = 0; side < 2; ++side)
+      if (HalfedgeH h = halfedge_of(e, side); b.face(h) == f) {
+        geo::Box hb = halfedge_box(b, h, chordal);
+        box.add(hb.min);
+        box.add(hb.max);
+      }
+  };
+  for (EdgeH e : edges)
+    if (b.alive(e)) add_edge(e);
+  for (VertexH v : vertices) {
+    if (!b.alive(v)) continue;
+    bool any = false;
+    for (HalfedgeH h : b.outgoing(v)) add_edge(edge_of(h)), any = true;
+    if (!any) box.add(b.point(v));  // a lone vertex (of f or elsewhere: a box that is too big is safe)
+  }
+  if (!box.empty()) box = geo::Box{box.min.array() - tol.length, box.max.array() + tol.length};
+  return box;
 }
 
 Region whole_body(const Body& b) {

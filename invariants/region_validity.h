@@ -73,6 +73,13 @@ inline constexpr std::size_t kManyLoops = 16;
 // the box), outer first.
 std::vector<LoopH> loops_near(const Body& b, FaceH f, const geo::Box& box);
 
+// For a face f with more than kManyLoops loops: the box of its edges that a change of
+// `vertices` and `edges` changed (the edges themselves and those at the vertices), and of
+// the lone vertices among them, grown by the tolerance; an empty box when none is on f.
+// nullopt for a face with fewer loops (it is taken whole).
+std::optional<geo::Box> near_change(const Body& b, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges,
+                                    FaceH f, const geo::Tolerances& tol);
+
 // The whole body as a region (for `kintsugi check` and tests).
 Region whole_body(const Body& b);
 

@@ -124,9 +124,9 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   if (why.empty()) {
     const double at_precision = options.lies_on > 0 ? options.lies_on : tol.precision;
     const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
-    std::string invalid = region_validity(
-        b, {touched.vertices, touched.edges, touched.faces, {}, surfaces_set_since(b.journal(), tx.first_entry())}, tol,
-        lies_on, at_precision);
+    touched.reshaped = surfaces_set_since(b.journal(), tx.first_entry());
+    std::string invalid = region_validity(b, {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped}, tol,
+                                          lies_on, at_precision);
     if (!invalid.empty()) why = "the result would not be valid: " + invalid;
   }
   if (why.empty() && options.check_topology_each_repair) {
@@ -159,7 +159,7 @@ struct Queues {
   // same table, read at the end) by what detection finds there now.
   void refresh(const Body& b, const geo::Tolerances& tol, const Touched& region) {
     if (region.empty()) return;
-    Neighbourhood n = neighbourhood(b, region);
+    Neighbourhood n = neighbourhood(b, region, tol);
     std::vector<std::vector<Problem>*> lists;
     for (auto& q : by_type) lists.push_back(&q);
     drop_anchored(b, n, lists);
@@ -222,7 +222,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     // problem refused earlier in this pass may have been changed by this repair: it is
     // dropped and found again if it still exists. The pending ones stay queued (found
     // again, they are already pending), but what is left of them is found too.
-    Neighbourhood n = neighbourhood(b, touched);
+    Neighbourhood n = neighbourhood(b, touched, tol);
     std::vector<const Problem*> waiting;
     for (const Problem& q : queue) waiting.push_back(&q);
     drop_anchored(b, n, {&left_of_type}, waiting);

@@ -1,5 +1,7 @@
 #include "repair/detect.h"
 
+#include "invariants/region_validity.h"
+
 #include "invariants/element_geometry.h"
 #include "repair/detect_detail.h"
 #include "repair/detect_threads.h"
@@ -272,9 +274,16 @@ Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vec
   return in_order(std::move(wanted));
 }
 
-void Neighbourhood::add_face(const Body& b, FaceH f) {
-  if (!b.alive(f) || !faces.insert(f).second) return;
-  for (LoopH l : b.loops_of(f)) {
+void Neighbourhood::add_face(const Body& b, FaceH f, const std::vector<LoopH>* loops) {
+  if (!b.alive(f)) return;
+  const bool had = !faces.insert(f).second;
+  if (had && !partial.count(f)) return;  // already whole
+  if (loops) {
+    partial.insert(f);
+  } else {
+    partial.erase(f);
+  }
+  for (LoopH l : loops ? *loops : b.loops_of(f)) {
     if (b.is_lone(l)) vertices.insert(b.lone_vertex(l));
     for (HalfedgeH h : b.loop_halfedges(l)) {
       edges.insert(edge_of(h));
@@ -299,15 +308,28 @@ void Neighbourhood::add_elements_of(const Body& b, const Problem& p) {
         e);
 }
 
-Neighbourhood neighbourhood(const Body& b, const Touched& t) {
+Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol) {
   Neighbourhood n;
+  std::set<FaceH> seen;
+  // A face with many loops whose surface stayed: its loops near the change only (see the
+  // header; spec/problems.md, "Detecting near a repair").
+  auto add = [&](FaceH f) {
+    if (!b.alive(f) || !seen.insert(f).second) return;
+    if (!t.reshaped.count(f))
+      if (std::optional<geo::Box> box = near_change(b, t.vertices, t.edges, f, tol)) {
+        const std::vector<LoopH> loops = loops_near(b, f, *box);
+        n.add_face(b, f, &loops);
+        return;
+      }
+    n.add_face(b, f);
+  };
   auto add_faces_of_edge = [&](EdgeH e) {
     for (unsigned s = 0; s < 2; ++s) {
       FaceH f = b.face(halfedge_of(e, s));
-      if (f.valid()) n.add_face(b, f);
+      if (f.valid()) add(f);
     }
   };
-  for (FaceH f : t.faces) n.add_face(b, f);
+  for (FaceH f : t.faces) add(f);
   for (EdgeH e : t.edges)
     if (b.alive(e)) add_faces_of_edge(e);
   for (VertexH v : t.vertices)

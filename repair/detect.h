@@ -38,24 +38,29 @@ Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vec
 // cycles across those edges. It does not reach across the core's edges: a face beside a
 // repair whose own boundary did not change keeps its problems (spec/problems.md,
 // "Detecting near a repair"), and a plate under thousands of features stays out of the
-// neighbourhood of a repair on one of them.
+// neighbourhood of a repair on one of them. A face in the core with many loops (that
+// plate, when the repair is on its boundary) brings only the edges, vertices and border
+// cycles of its loops near the change (invariants/region_validity.h, loops_near), unless
+// the repair set its surface; the face itself is in the core all the same.
 struct Neighbourhood {
   std::unordered_set<FaceH> faces;
   std::unordered_set<EdgeH> edges;
   std::unordered_set<VertexH> vertices;
   std::unordered_set<LoopH> borders;
+  std::unordered_set<FaceH> partial;  // faces of `faces` added with some of their loops only
 
   bool empty() const { return faces.empty() && edges.empty() && vertices.empty() && borders.empty(); }
   // Whether p is anchored here: its elements of the kind its detector starts from
   // (faces; edges for short edges; the vertex for mergeable edges; the border cycle for
   // gaps) lie in the neighbourhood. A problem with a dead element is anchored anywhere.
   bool anchors(const Body& b, const Problem& p) const;
-  // Adds a live face with its edges, vertices and the border cycles across its edges.
-  void add_face(const Body& b, FaceH f);
+  // Adds a live face with its edges, vertices and the border cycles across its edges
+  // (those of `loops` only, when given).
+  void add_face(const Body& b, FaceH f, const std::vector<LoopH>* loops = nullptr);
   // Adds p's live elements: faces as add_face does, edges, vertices, border cycles.
   void add_elements_of(const Body& b, const Problem& p);
 };
-Neighbourhood neighbourhood(const Body& b, const Touched& t);
+Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol);
 
 // Replacing known problems by what detection finds near a repair. Drops from each list
 // the problems anchored in n and grows n by their live elements: what is left of a

@@ -16,12 +16,16 @@ struct Touched {
   std::set<VertexH> vertices;
   std::set<EdgeH> edges;
   std::set<FaceH> faces;
+  // The faces whose surface was set (from the journal, once the repair is committed): a
+  // face with many loops is taken whole only then (invariants/region_validity.h).
+  std::set<FaceH> reshaped;
 
   bool empty() const { return vertices.empty() && edges.empty() && faces.empty(); }
   void merge(const Touched& o) {
     vertices.insert(o.vertices.begin(), o.vertices.end());
     edges.insert(o.edges.begin(), o.edges.end());
     faces.insert(o.faces.begin(), o.faces.end());
+    reshaped.insert(o.reshaped.begin(), o.reshaped.end());
   }
   void clear() { *this = Touched{}; }
 };

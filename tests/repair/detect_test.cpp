@@ -388,7 +388,7 @@ RC_GTEST_PROP(Detect, NearOfOneTypeIsNearFilteredToIt, ()) {
   for (int i = *rc::gen::inRange(0, 3); i-- > 0;) touched.edges.insert(es[*rc::gen::inRange<std::size_t>(0, es.size())]);
   for (int i = *rc::gen::inRange(0, 2); i-- > 0;) touched.faces.insert(fs[*rc::gen::inRange<std::size_t>(0, fs.size())]);
   const geo::Tolerances tol = tol_for(b, t);
-  const Neighbourhood near = neighbourhood(b, touched);
+  const Neighbourhood near = neighbourhood(b, touched, tol);
   const Detection all = detect_near(b, tol, near);
   for (ProblemType type : kAllProblemTypes) {
     std::vector<std::string> expected, got;
@@ -442,7 +442,7 @@ TEST(Detect, AChainCutByARepairIsFoundAgainInItsPieces) {
   ASSERT_TRUE(euler::kef(b, cut).ok());
   Touched touched;
   touched.faces.insert(side);
-  Neighbourhood n = neighbourhood(b, touched);
+  Neighbourhood n = neighbourhood(b, touched, tol);
   drop_anchored(b, n, {&known});
   for (Problem& p : detect_near(b, tol, n).problems) known.push_back(std::move(p));
   std::vector<std::string> want, got;
