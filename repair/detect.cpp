@@ -308,6 +308,32 @@ void Neighbourhood::add_elements_of(const Body& b, const Problem& p) {
         e);
 }
 
+namespace {
+// Whether face f, changed only inside `box`, is neither small nor a sliver now and was
+// neither before: whether an edge on it counts as short did not change anywhere on it
+// (spec/problems.md, "A face with many loops"). Measured coarsely, as
+// DetectContext::measure does first, with the same bound on the error (area within 4·P·e,
+// diagonal within 4·e); false where that cannot tell. Its area before was at least the
+// area now less what fits in the box (at most the box's diagonal squared), and its box
+// diagonal at most the one now plus the box's.
+bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tolerances& tol) {
+  double perimeter = 0.0;
+  std::size_t loops = 0;
+  for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
+    ++loops;
+    b.for_each_halfedge(l, [&](HalfedgeH h) { perimeter += edge_length(b, edge_of(h)); });
+  }
+  const double chordal = tol.measure_chordal();
+  const double coarse = std::max(tol.coarse_measure_chordal(), perimeter / (400.0 * double(std::max<std::size_t>(1, loops))));
+  std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse);
+  if (!m) return false;
+  const double e = coarse + chordal, d = box.diagonal(), t = tol.length;
+  const double area_lo = m->area - 4 * perimeter * e - d * d;
+  const double diagonal_hi = m->bounds.diagonal() + 4 * e + d;
+  return std::isfinite(area_lo) && area_lo >= t * t && area_lo >= t * diagonal_hi;
+}
+}  // namespace
+
 Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol) {
   Neighbourhood n;
   std::set<FaceH> seen;
@@ -316,7 +342,8 @@ Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Toleranc
   auto add = [&](FaceH f) {
     if (!b.alive(f) || !seen.insert(f).second) return;
     if (!t.reshaped.count(f))
-      if (std::optional<geo::Box> box = near_change(b, t.vertices, t.edges, f, tol)) {
+      if (std::optional<geo::Box> box = near_change(b, t.vertices, t.edges, f, tol);
+          box && stays_ordinary(b, f, *box, tol)) {
         const std::vector<LoopH> loops = loops_near(b, f, *box);
         n.add_face(b, f, &loops);
         return;

@@ -6,6 +6,7 @@
 #include "kernel/euler.h"
 #include "kernel/transaction.h"
 #include "invariants/element_geometry.h"
+#include "invariants/region_validity.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
 #include "repair/detect_threads.h"
@@ -192,6 +193,29 @@ RC_GTEST_PROP(Pipeline, TheQueuesAreWhatDetectFindsAfterEveryRefreshOnRandomZooM
   std::string what;
   Body b = random_zoo_model(t, &what);
   const std::string bad = stale_queues(b, tol_for(b, t));
+  if (!bad.empty()) RC_FAIL(what + bad);
+}
+
+// The same on families with defects of any type put on the plate, a face with more loops
+// than kManyLoops: detection near a repair there takes the plate's loops near the change
+// only (spec/problems.md, "A face with many loops").
+RC_GTEST_PROP(Pipeline, TheQueuesAreWhatDetectFindsAfterEveryRefreshWithDefectsOnThePlate, ()) {
+  zoo::ZooModel m = zoo::family(*rc::gen::inRange(150, 700), *rc::gen::element(0.0, 0.05), *rc::gen::inRange(1, 1000));
+  Body& b = m.body;
+  FaceH plate;
+  std::size_t most = 0;
+  for (FaceH f : b.faces())
+    if (std::size_t k = b.loops_of(f).size(); k > most) most = k, plate = f;
+  RC_PRE(most > kManyLoops);
+  std::string what;
+  const int n = *rc::gen::inRange(1, 7);
+  for (int i = 0; i < n; ++i) {
+    ProblemType type = *rc::gen::elementOf(std::vector<ProblemType>(kAllProblemTypes.begin(), kAllProblemTypes.end()));
+    std::string err;
+    if (auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), plate.str(), m.tolerance, &err))
+      what += std::string(problem_name(type)) + ": " + inj->description + "\n";
+  }
+  const std::string bad = stale_queues(b, tol_for(b, m.tolerance));
   if (!bad.empty()) RC_FAIL(what + bad);
 }
 

@@ -2,6 +2,7 @@
 // injected defects are reported as their type at the place the injector names, the
 // tolerance boundary is sharp, and scaling model and tolerance together changes nothing.
 #include "invariants/element_geometry.h"
+#include "invariants/region_validity.h"
 #include "kernel/builders.h"
 #include "kernel/euler.h"
 #include "repair/detect.h"
@@ -516,6 +517,68 @@ TEST(Detect, DetectTypesIsDetectOfThoseTypes) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace kintsugi
+
+namespace kintsugi {
+namespace {
+
+// A repair on the boundary of a face with many loops (the family's plate) brings into the
+// neighbourhood the face itself and the edges of its loops near the change only, unless
+// it set the face's surface (spec/problems.md, "A face with many loops").
+TEST(Neighbourhood, APlateBringsItsLoopsNearTheChangeOnly) {
+  zoo::ZooModel m = zoo::family(400, 0.0, 5);
+  const Body& b = m.body;
+  FaceH plate;
+  std::size_t most = 0;
+  for (FaceH f : b.faces())
+    if (std::size_t k = b.loops_of(f).size(); k > most) most = k, plate = f;
+  ASSERT_GT(most, 4 * kManyLoops);
+  std::vector<LoopH> rings;
+  for (LoopH l : b.loops_of(plate))
+    if (!b.is_outer(l) && !b.is_lone(l)) rings.push_back(l);
+  const LoopH changed = rings.front();
+  auto centre = [&](LoopH l) {
+    geo::Vec3 c = geo::Vec3::Zero();
+    for (VertexH v : b.loop_vertices(l)) c += b.point(v);
+    return geo::Vec3(c / double(b.loop_vertices(l).size()));
+  };
+  LoopH far = rings.back(), next = rings.back();
+  for (LoopH l : rings) {
+    if ((centre(l) - centre(changed)).norm() > (centre(far) - centre(changed)).norm()) far = l;
+    if (l != changed && (centre(l) - centre(changed)).norm() < (centre(next) - centre(changed)).norm()) next = l;
+  }
+  // A tolerance at which the next ring is near the change (the distance of the centres:
+  // the changed ring's box holds its centre, the next ring's box its own).
+  const geo::Tolerances tol = geo::Tolerances::for_model((centre(next) - centre(changed)).norm(), model_size(b));
+
+  Touched t;
+  t.vertices.insert(b.loop_vertices(changed).front());
+  const Neighbourhood n = neighbourhood(b, t, tol);
+  EXPECT_TRUE(n.faces.count(plate));
+  EXPECT_TRUE(n.partial.count(plate));
+  std::size_t plate_edges = 0, plate_edges_in = 0;
+  for (LoopH l : b.loops_of(plate))
+    for (HalfedgeH h : b.loop_halfedges(l)) ++plate_edges, plate_edges_in += n.edges.count(edge_of(h));
+  EXPECT_LT(plate_edges_in * 4, plate_edges);
+  for (LoopH l : loops_near(b, plate, *near_change(b, t.vertices, t.edges, plate, tol)))
+    for (HalfedgeH h : b.loop_halfedges(l)) EXPECT_TRUE(n.edges.count(edge_of(h))) << edge_of(h).str();
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(plate))) EXPECT_TRUE(n.edges.count(edge_of(h)));
+  for (HalfedgeH h : b.loop_halfedges(next)) EXPECT_TRUE(n.edges.count(edge_of(h))) << edge_of(h).str();
+  for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_FALSE(n.edges.count(edge_of(h))) << edge_of(h).str();
+
+  // The plate's surface set by the repair: all of it.
+  t.reshaped.insert(plate);
+  const Neighbourhood whole = neighbourhood(b, t, tol);
+  EXPECT_FALSE(whole.partial.count(plate));
+  for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_TRUE(whole.edges.count(edge_of(h)));
+  // Added whole later (a known problem of the plate grows the neighbourhood): all of it.
+  Neighbourhood grown = n;
+  grown.add_face(b, plate);
+  EXPECT_FALSE(grown.partial.count(plate));
+  for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_TRUE(grown.edges.count(edge_of(h)));
 }
 
 }  // namespace
