@@ -153,13 +153,16 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
 // The problems waiting for each pass (by type), kept current by local re-detection.
 struct Queues {
   std::array<std::vector<Problem>, 11> by_type;
+  // Shared by the refreshes and the passes' re-detections after each repair: every
+  // change the pipeline commits is followed by one of them, as the memo requires.
+  FaceBoundsMemo memo;
 
   // Replaces the problems anchored near `region` in the queues of types from `from` on
   // (earlier types are done: what is anchored there now goes to `left`... kept in the
   // same table, read at the end) by what detection finds there now.
   void refresh(const Body& b, const geo::Tolerances& tol, const Touched& region) {
     if (region.empty()) return;
-    Neighbourhood n = neighbourhood(b, region, tol);
+    Neighbourhood n = neighbourhood(b, region, tol, &memo);
     std::vector<std::vector<Problem>*> lists;
     for (auto& q : by_type) lists.push_back(&q);
     drop_anchored(b, n, lists);
@@ -176,7 +179,7 @@ struct Queues {
 // does not repair stay in `left_of_type`.
 Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::vector<Problem> queue_in,
                   BeautifyReport& report, const BeautifyOptions& options, std::vector<Problem>& left_of_type,
-                  std::vector<Unsettled>* unsettled = nullptr) {
+                  std::vector<Unsettled>* unsettled = nullptr, FaceBoundsMemo* memo = nullptr) {
   Touched region;
   if (!pass) {
     for (Problem& p : queue_in) {
@@ -222,7 +225,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     // problem refused earlier in this pass may have been changed by this repair: it is
     // dropped and found again if it still exists. The pending ones stay queued (found
     // again, they are already pending), but what is left of them is found too.
-    Neighbourhood n = neighbourhood(b, touched, tol);
+    Neighbourhood n = neighbourhood(b, touched, tol, memo);
     std::vector<const Problem*> waiting;
     for (const Problem& q : queue) waiting.push_back(&q);
     drop_anchored(b, n, {&left_of_type}, waiting);
@@ -340,7 +343,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
       q.by_type[slot(t)].clear();
       std::vector<Problem> left;
       const std::size_t first_entry = r.problems.size();
-      since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled);
+      since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled, &q.memo);
       for (std::size_t i = first_entry; i < r.problems.size(); ++i) repaired += r.problems[i].repaired();
       q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
       r.seconds[slot(t)] += std::chrono::duration<double>(clock::now() - start).count();

@@ -315,8 +315,20 @@ namespace {
 // DetectContext::measure does first, with the same bound on the error (area within 4·P·e,
 // diagonal within 4·e); false where that cannot tell. Its area before was at least the
 // area now less what fits in the box (at most the box's diagonal squared), and its box
-// diagonal at most the one now plus the box's.
-bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tolerances& tol) {
+// diagonal at most the one now plus the box's. With a memo, bounds from an earlier
+// measure, shrunk by every change since, serve while they still decide.
+bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tolerances& tol, FaceBoundsMemo* memo) {
+  const double d = box.diagonal(), t = tol.length;
+  auto decides = [&](const FaceBoundsMemo::Bounds& k) {
+    return std::isfinite(k.area_lo) && k.area_lo >= t * t && k.area_lo >= t * k.diagonal_hi;
+  };
+  if (memo)
+    if (auto it = memo->faces.find(f); it != memo->faces.end()) {
+      it->second.area_lo -= d * d;
+      it->second.diagonal_hi += d;
+      if (decides(it->second)) return true;
+      memo->faces.erase(it);
+    }
   double perimeter = 0.0;
   std::size_t loops = 0;
   for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
@@ -327,14 +339,17 @@ bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tole
   const double coarse = std::max(tol.coarse_measure_chordal(), perimeter / (400.0 * double(std::max<std::size_t>(1, loops))));
   std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse);
   if (!m) return false;
-  const double e = coarse + chordal, d = box.diagonal(), t = tol.length;
-  const double area_lo = m->area - 4 * perimeter * e - d * d;
-  const double diagonal_hi = m->bounds.diagonal() + 4 * e + d;
-  return std::isfinite(area_lo) && area_lo >= t * t && area_lo >= t * diagonal_hi;
+  const double e = coarse + chordal;
+  const FaceBoundsMemo::Bounds k{m->area - 4 * perimeter * e - d * d, m->bounds.diagonal() + 4 * e + d};
+  if (!decides(k)) return false;
+  if (memo) memo->faces[f] = k;
+  return true;
 }
 }  // namespace
 
-Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol) {
+Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol, FaceBoundsMemo* memo) {
+  if (memo)
+    for (FaceH f : t.reshaped) memo->faces.erase(f);
   Neighbourhood n;
   std::set<FaceH> seen;
   // A face with many loops whose surface stayed: its loops near the change only (see the
@@ -343,7 +358,7 @@ Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Toleranc
     if (!b.alive(f) || !seen.insert(f).second) return;
     if (!t.reshaped.count(f))
       if (std::optional<geo::Box> box = near_change(b, t.vertices, t.edges, f, tol);
-          box && stays_ordinary(b, f, *box, tol)) {
+          box && stays_ordinary(b, f, *box, tol, memo)) {
         const std::vector<LoopH> loops = loops_near(b, f, *box);
         n.add_face(b, f, &loops);
         return;

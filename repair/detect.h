@@ -16,6 +16,7 @@
 #include "repair/touched.h"
 
 #include <array>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -60,7 +61,18 @@ struct Neighbourhood {
   // Adds p's live elements: faces as add_face does, edges, vertices, border cycles.
   void add_elements_of(const Body& b, const Problem& p);
 };
-Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol);
+// What is known of faces with many loops between neighbourhoods: for each, lower and
+// upper bounds on its area and box diagonal that hold now, each later change shrinking
+// them by what fits in its box (spec/problems.md, "A face with many loops"). So a plate
+// is measured once, not after every repair beside it. Valid only while every change to
+// the body is followed by a `neighbourhood` call with the memo (beautify's pipeline).
+struct FaceBoundsMemo {
+  struct Bounds {
+    double area_lo, diagonal_hi;
+  };
+  std::unordered_map<FaceH, Bounds> faces;
+};
+Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol, FaceBoundsMemo* memo = nullptr);
 
 // Replacing known problems by what detection finds near a repair. Drops from each list
 // the problems anchored in n and grows n by their live elements: what is left of a

@@ -569,8 +569,26 @@ TEST(Neighbourhood, APlateBringsItsLoopsNearTheChangeOnly) {
   for (HalfedgeH h : b.loop_halfedges(next)) EXPECT_TRUE(n.edges.count(edge_of(h))) << edge_of(h).str();
   for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_FALSE(n.edges.count(edge_of(h))) << edge_of(h).str();
 
+  // With a memo the plate is measured once; each later change shrinks the bounds by what
+  // fits in its box, and when they no longer decide it is measured again.
+  FaceBoundsMemo memo;
+  neighbourhood(b, t, tol, &memo);
+  ASSERT_TRUE(memo.faces.count(plate));
+  const FaceBoundsMemo::Bounds first = memo.faces.at(plate);
+  const double d = near_change(b, t.vertices, t.edges, plate, tol)->diagonal();
+  EXPECT_TRUE(neighbourhood(b, t, tol, &memo).partial.count(plate));
+  EXPECT_NEAR(memo.faces.at(plate).area_lo, first.area_lo - d * d, 1e-9 * first.area_lo);
+  EXPECT_NEAR(memo.faces.at(plate).diagonal_hi, first.diagonal_hi + d, 1e-9 * first.diagonal_hi);
+  memo.faces.at(plate).area_lo = tol.length * tol.length;  // worn down to the limit by many changes
+  EXPECT_TRUE(neighbourhood(b, t, tol, &memo).partial.count(plate));
+  EXPECT_NEAR(memo.faces.at(plate).area_lo, first.area_lo, 1e-9 * first.area_lo);
+  memo.faces.at(plate) = {tol.length * tol.length * 1e-3, first.diagonal_hi};  // said small: measured again
+  EXPECT_TRUE(neighbourhood(b, t, tol, &memo).partial.count(plate));
+
   // The plate's surface set by the repair: all of it.
   t.reshaped.insert(plate);
+  EXPECT_FALSE(neighbourhood(b, t, tol, &memo).partial.count(plate));
+  EXPECT_FALSE(memo.faces.count(plate));
   const Neighbourhood whole = neighbourhood(b, t, tol);
   EXPECT_FALSE(whole.partial.count(plate));
   for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_TRUE(whole.edges.count(edge_of(h)));
