@@ -57,7 +57,10 @@ Grown grow(const Body& b, const Region& r, const geo::Tolerances& tol) {
       if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) g.fs.insert(f);
   for (FaceH f : g.fs) {
     std::optional<geo::Box> box = near_change(b, r.vertices, r.edges, f, tol);
-    if (box) g.near[f] = {*box, loops_near(b, f, *box)};
+    if (box)
+      g.near[f] = {*box, r.loop_index && r.loop_index->has(f)
+                             ? r.loop_index->near(b, f, *box, r.vertices, r.edges, loop_chordal(tol))
+                             : loops_near(b, f, *box)};
     const bool whole = !box || !r.surfaces_set || r.surfaces_set->count(f);
     if (box && whole) g.whole.insert(f);
     for (LoopH l : whole ? b.loops_of(f) : g.near[f].loops) {
@@ -295,7 +298,7 @@ std::optional<geo::Box> near_change(const Body& b, const std::set<VertexH>& vert
                                     FaceH f, const geo::Tolerances& tol) {
   std::vector<LoopH> ls = b.loops_of(f);
   if (ls.size() <= kManyLoops) return std::nullopt;
-  const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
+  const double chordal = loop_chordal(tol);
   geo::Box box;
   auto add_edge = [&](EdgeH e) {
     for (unsigned side = 0; side < 2; ++side)
@@ -402,7 +405,7 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
     check_face_loops(b, f, it == g.near.end() ? b.loops_of(f) : it->second.loops, tol, out);
   }
   if (out.empty() && g_external) {
-    Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt};
+    Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt, nullptr};
     if (std::string why = g_external(b, grown); !why.empty()) out.push_back({"external_check", {}, why, 0.0});
   }
   return out;

@@ -38,9 +38,11 @@
 
 #include "geometry/box.h"
 #include "geometry/tolerance.h"
+#include "invariants/loop_index.h"
 #include "invariants/violation.h"
 #include "kernel/body.h"
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <set>
@@ -64,10 +66,16 @@ struct Region {
   // The faces whose surface the repair set, when the caller knows (from the journal);
   // nullopt: any face may have a new surface (see the header).
   std::optional<std::set<FaceH>> surfaces_set;
+  // Where the loops of faces with many loops were after the last committed change
+  // (invariants/loop_index.h), when the caller keeps that; else they are scanned.
+  const LoopBoxIndex* loop_index = nullptr;
 };
 
 // A face with more loops than this is checked near the change only (see above).
 inline constexpr std::size_t kManyLoops = 16;
+
+// The chordal error at which the boxes of changed edges and of loops are found.
+inline double loop_chordal(const geo::Tolerances& tol) { return std::max(tol.length * 0.05, tol.precision * 10); }
 
 // The outer loop of f and every other loop whose box meets `box` (lone vertices: when in
 // the box), outer first.

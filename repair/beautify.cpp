@@ -78,7 +78,8 @@ std::set<FaceH> surfaces_set_since(const Journal& j, std::size_t from) {
 }
 
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
-                    const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr) {
+                    const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr,
+                    const FaceBoundsMemo* memo = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   Transaction tx(b);
   std::string why, note, solve_why;
@@ -125,8 +126,9 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     const double at_precision = options.lies_on > 0 ? options.lies_on : tol.precision;
     const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
     touched.reshaped = surfaces_set_since(b.journal(), tx.first_entry());
-    std::string invalid = region_validity(b, {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped}, tol,
-                                          lies_on, at_precision);
+    std::string invalid = region_validity(
+        b, {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped, memo ? &memo->loops : nullptr}, tol,
+        lies_on, at_precision);
     if (!invalid.empty()) why = "the result would not be valid: " + invalid;
   }
   if (why.empty() && options.check_topology_each_repair) {
@@ -212,7 +214,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     }
     Touched touched;
     detail::OriginalFaces original;
-    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original);
+    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo);
     const bool ok = entry.repaired();
     report.problems.push_back(std::move(entry));
     if (ok && unsettled && !original.empty()) unsettled->push_back({report.problems.size() - 1, touched, std::move(original)});

@@ -349,20 +349,25 @@ bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tole
 
 Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol, FaceBoundsMemo* memo) {
   if (memo)
-    for (FaceH f : t.reshaped) memo->faces.erase(f);
+    for (FaceH f : t.reshaped) memo->faces.erase(f), memo->loops.forget(f);
   Neighbourhood n;
   std::set<FaceH> seen;
   // A face with many loops whose surface stayed: its loops near the change only (see the
   // header; spec/problems.md, "Detecting near a repair").
   auto add = [&](FaceH f) {
     if (!b.alive(f) || !seen.insert(f).second) return;
-    if (!t.reshaped.count(f))
-      if (std::optional<geo::Box> box = near_change(b, t.vertices, t.edges, f, tol);
-          box && stays_ordinary(b, f, *box, tol, memo)) {
-        const std::vector<LoopH> loops = loops_near(b, f, *box);
-        n.add_face(b, f, &loops);
-        return;
-      }
+    const bool reshaped = t.reshaped.count(f) != 0;
+    const std::optional<geo::Box> box = reshaped ? std::nullopt : near_change(b, t.vertices, t.edges, f, tol);
+    // With the memo, the index of the face's loops learns of every committed change to it
+    // (whether this neighbourhood takes the face whole or not), as its contract requires.
+    if (box && memo) memo->loops.committed(b, f, t.vertices, t.edges, loop_chordal(tol));
+    if (box && stays_ordinary(b, f, *box, tol, memo)) {
+      const std::vector<LoopH> loops = memo && memo->loops.has(f)
+                                           ? memo->loops.near(b, f, *box, t.vertices, t.edges, loop_chordal(tol))
+                                           : loops_near(b, f, *box);
+      n.add_face(b, f, &loops);
+      return;
+    }
     n.add_face(b, f);
   };
   auto add_faces_of_edge = [&](EdgeH e) {

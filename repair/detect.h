@@ -11,6 +11,7 @@
 #pragma once
 
 #include "geometry/tolerance.h"
+#include "invariants/loop_index.h"
 #include "kernel/body.h"
 #include "problems/problem.h"
 #include "repair/touched.h"
@@ -71,6 +72,9 @@ struct FaceBoundsMemo {
     double area_lo, diagonal_hi;
   };
   std::unordered_map<FaceH, Bounds> faces;
+  // Where the loops of such faces are, brought up to date by each neighbourhood call
+  // (invariants/loop_index.h); the validity gate reads it.
+  LoopBoxIndex loops;
 };
 Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Tolerances& tol, FaceBoundsMemo* memo = nullptr);
 

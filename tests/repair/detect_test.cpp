@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
 #include <set>
 
 namespace kintsugi {
@@ -597,6 +598,77 @@ TEST(Neighbourhood, APlateBringsItsLoopsNearTheChangeOnly) {
   grown.add_face(b, plate);
   EXPECT_FALSE(grown.partial.count(plate));
   for (HalfedgeH h : b.loop_halfedges(far)) EXPECT_TRUE(grown.edges.count(edge_of(h)));
+}
+
+}  // namespace
+}  // namespace kintsugi
+
+namespace kintsugi {
+namespace {
+
+std::set<LoopH> as_set(const std::vector<LoopH>& v) { return {v.begin(), v.end()}; }
+
+// The index of a plate's loops (invariants/loop_index.h) answers as loops_near does, on
+// random boxes, before and after a ring is moved: told of the change, it finds the ring
+// where it is now; once the change is committed, without being told again.
+TEST(LoopBoxIndex, AnswersAsTheScanDoesBeforeAndAfterAChange) {
+  zoo::ZooModel m = zoo::family(600, 0.0, 9);
+  Body b = m.body;
+  FaceH plate;
+  std::size_t most = 0;
+  for (FaceH f : b.faces())
+    if (std::size_t k = b.loops_of(f).size(); k > most) most = k, plate = f;
+  ASSERT_GT(most, 4 * kManyLoops);
+  const double chordal = 1e-3;
+  LoopBoxIndex index;
+  EXPECT_FALSE(index.has(plate));
+  index.committed(b, plate, {}, {}, chordal);
+  ASSERT_TRUE(index.has(plate));
+  geo::Box all;
+  for (VertexH v : b.vertices()) all.add(b.point(v));
+  std::mt19937_64 rng(4);
+  auto random_box = [&] {
+    std::uniform_real_distribution<double> u(0, 1);
+    const geo::Vec3 c = all.min + (all.max - all.min).cwiseProduct(geo::Vec3(u(rng), u(rng), u(rng)));
+    return geo::Box::around(c, u(rng) * 0.1 * all.diagonal());
+  };
+  int nonempty = 0;
+  for (int i = 0; i < 200; ++i) {
+    const geo::Box box = random_box();
+    const auto want = as_set(loops_near(b, plate, box));
+    nonempty += want.size() > 1;
+    EXPECT_EQ(as_set(index.near(b, plate, box, {}, {}, chordal)), want);
+  }
+  EXPECT_GT(nonempty, 20);
+
+  // A square ring moved by half the plate, corner by corner.
+  LoopH ring;
+  for (LoopH l : b.loops_of(plate))
+    if (!b.is_outer(l) && !b.is_lone(l) && b.loop_vertices(l).size() == 4) ring = l;
+  ASSERT_TRUE(ring.valid());
+  const std::vector<VertexH> corners = b.loop_vertices(ring);
+  const geo::Box before = loop_box(b, ring, chordal);
+  geo::Vec3 shift = 0.5 * (all.max - all.min);
+  shift.z() = 0;
+  if (std::abs(b.point(corners[0]).z() - b.point(corners[1]).z()) > 1e-9) GTEST_SKIP() << "the plate is not level";
+  for (VertexH v : corners) b.set_point(v, b.point(v) + shift);
+  for (HalfedgeH h : b.loop_halfedges(ring)) {
+    EdgeH e = edge_of(h);
+    const geo::Vec3 a = b.point(b.origin(halfedge_of(e, 0))), c = b.point(b.target(halfedge_of(e, 0)));
+    b.set_curve(e, geo::Line{a, (c - a).normalized()});
+  }
+  const std::set<VertexH> moved(corners.begin(), corners.end());
+  const geo::Box now = loop_box(b, ring, chordal);
+  auto has_ring = [&](const std::vector<LoopH>& v) { return std::count(v.begin(), v.end(), ring) == 1; };
+  EXPECT_TRUE(has_ring(index.near(b, plate, now, moved, {}, chordal)));
+  EXPECT_FALSE(has_ring(index.near(b, plate, before, moved, {}, chordal)));
+  index.committed(b, plate, moved, {}, chordal);
+  EXPECT_TRUE(has_ring(index.near(b, plate, now, {}, {}, chordal)));
+  EXPECT_FALSE(has_ring(index.near(b, plate, before, {}, {}, chordal)));
+  for (int i = 0; i < 200; ++i) {
+    const geo::Box box = random_box();
+    EXPECT_EQ(as_set(index.near(b, plate, box, {}, {}, chordal)), as_set(loops_near(b, plate, box)));
+  }
 }
 
 }  // namespace
