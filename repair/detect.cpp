@@ -81,6 +81,15 @@ FaceInfo DetectContext::measure(FaceH f) const {
   return measure_face(b, f, tol, chordal);
 }
 
+void DetectContext::know(FaceH f, const FaceInfo& fi) {
+  if (whole) {
+    face_dense_[f.idx()] = fi;
+    face_done_[f.idx()] = 1;
+  } else {
+    face_sparse_[f.idx()] = fi;
+  }
+}
+
 const FaceInfo& DetectContext::face(FaceH f) const {
   if (whole) {
     FaceInfo& fi = face_dense_[f.idx()];
@@ -317,7 +326,8 @@ namespace {
 // area now less what fits in the box (at most the box's diagonal squared), and its box
 // diagonal at most the one now plus the box's. With a memo, bounds from an earlier
 // measure, shrunk by every change since, serve while they still decide.
-bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tolerances& tol, FaceBoundsMemo* memo) {
+bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tolerances& tol, FaceBoundsMemo* memo,
+                    FaceBoundsMemo::Bounds* bounds) {
   const double d = box.diagonal(), t = tol.length;
   auto decides = [&](const FaceBoundsMemo::Bounds& k) {
     return std::isfinite(k.area_lo) && k.area_lo >= t * t && k.area_lo >= t * k.diagonal_hi;
@@ -326,7 +336,7 @@ bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tole
     if (auto it = memo->faces.find(f); it != memo->faces.end()) {
       it->second.area_lo -= d * d;
       it->second.diagonal_hi += d;
-      if (decides(it->second)) return true;
+      if (decides(it->second)) return *bounds = it->second, true;
       memo->faces.erase(it);
     }
   double perimeter = 0.0;
@@ -343,6 +353,7 @@ bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tole
   const FaceBoundsMemo::Bounds k{m->area - 4 * perimeter * e - d * d, m->bounds.diagonal() + 4 * e + d};
   if (!decides(k)) return false;
   if (memo) memo->faces[f] = k;
+  *bounds = k;
   return true;
 }
 }  // namespace
@@ -361,7 +372,9 @@ Neighbourhood neighbourhood(const Body& b, const Touched& t, const geo::Toleranc
     // With the memo, the index of the face's loops learns of every committed change to it
     // (whether this neighbourhood takes the face whole or not), as its contract requires.
     if (box && memo) memo->loops.committed(b, f, t.vertices, t.edges, loop_chordal(tol));
-    if (box && stays_ordinary(b, f, *box, tol, memo)) {
+    FaceBoundsMemo::Bounds bounds{};
+    if (box && stays_ordinary(b, f, *box, tol, memo, &bounds)) {
+      n.ordinary[f] = bounds;
       const std::vector<LoopH> loops = memo && memo->loops.has(f)
                                            ? memo->loops.near(b, f, *box, t.vertices, t.edges, loop_chordal(tol))
                                            : loops_near(b, f, *box);
@@ -436,14 +449,31 @@ detail::Scope scope_of(const Neighbourhood& n) {
 }
 }  // namespace
 
-Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
+namespace {
+// A local detection's context, told what the neighbourhood knows of faces with many loops.
+detail::DetectContext near_context(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
   detail::DetectContext c(b, tol, scope_of(n), false);
+  // Neither small nor a sliver is all the detectors read of such a face; its area and box
+  // diagonal stand in as the bounds that showed it.
+  for (const auto& [f, k] : n.ordinary) {
+    detail::FaceInfo fi;
+    fi.measured = true;
+    fi.area = k.area_lo;
+    fi.bbox_diagonal = k.diagonal_hi;
+    c.know(f, fi);
+  }
+  return c;
+}
+}  // namespace
+
+Detection detect_near(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n) {
+  detail::DetectContext c = near_context(b, tol, n);
   return run(c);
 }
 
 std::vector<Problem> detect_near_of_type(const Body& b, const geo::Tolerances& tol, const Neighbourhood& n,
                                          ProblemType t) {
-  detail::DetectContext c(b, tol, scope_of(n), false);
+  detail::DetectContext c = near_context(b, tol, n);
   std::vector<Problem> all, mine;
   run_for(c, t, all);
   for (Problem& p : all)

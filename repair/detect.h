@@ -50,6 +50,12 @@ struct Neighbourhood {
   std::unordered_set<VertexH> vertices;
   std::unordered_set<LoopH> borders;
   std::unordered_set<FaceH> partial;  // faces of `faces` added with some of their loops only
+  struct Bounds {
+    double area_lo, diagonal_hi;
+  };
+  // Faces of `partial` shown neither small nor a sliver, with the bounds that showed it:
+  // detection takes that instead of measuring them (a plate's measure is O(plate)).
+  std::unordered_map<FaceH, Bounds> ordinary;
 
   bool empty() const { return faces.empty() && edges.empty() && vertices.empty() && borders.empty(); }
   // Whether p is anchored here: its elements of the kind its detector starts from
@@ -68,9 +74,7 @@ struct Neighbourhood {
 // is measured once, not after every repair beside it. Valid only while every change to
 // the body is followed by a `neighbourhood` call with the memo (beautify's pipeline).
 struct FaceBoundsMemo {
-  struct Bounds {
-    double area_lo, diagonal_hi;
-  };
+  using Bounds = Neighbourhood::Bounds;
   std::unordered_map<FaceH, Bounds> faces;
   // Where the loops of such faces are, brought up to date by each neighbourhood call
   // (invariants/loop_index.h); the validity gate reads it.

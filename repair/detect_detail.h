@@ -71,6 +71,9 @@ class DetectContext {
   bool whole;  // the scope is the whole body
 
   const FaceInfo& face(FaceH f) const;     // measured on first use
+  // What is already known of f, in place of measuring it (a face with many loops shown
+  // neither small nor a sliver by bounds: Neighbourhood::ordinary).
+  void know(FaceH f, const FaceInfo& fi);
   double edge_length(EdgeH e) const;       // measured on first use
   Marks marks_faces() const { return Marks(b.face_slots(), whole); }
   // A whole-body detection's measures taken ahead on `threads` threads: every edge's
