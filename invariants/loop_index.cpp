@@ -36,22 +36,21 @@ geo::Box loop_box(const Body& b, LoopH l, double chordal) {
   return box;
 }
 
+bool has_more_loops_than(const Body& b, FaceH f, std::size_t n) {
+  std::size_t k = 0;
+  for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l))
+    if (++k > n) return true;
+  return false;
+}
+
 std::set<LoopH> loops_through(const Body& b, FaceH f, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges) {
   std::set<LoopH> out;
-  auto add_edge = [&](EdgeH e) {
-    for (unsigned s = 0; s < 2; ++s)
-      if (HalfedgeH h = halfedge_of(e, s); b.face(h) == f) out.insert(b.loop(h));
-  };
-  for (EdgeH e : edges)
-    if (b.alive(e)) add_edge(e);
-  for (VertexH v : vertices) {
-    if (!b.alive(v)) continue;
-    bool any = false;
-    for (HalfedgeH h : b.outgoing(v)) add_edge(edge_of(h)), any = true;
-    if (!any)  // a lone vertex: its loop, when it is one of f's
-      for (LoopH l : b.loops_of(f))
-        if (b.is_lone(l) && b.lone_vertex(l) == v) out.insert(l);
-  }
+  for_each_changed_side(
+      b, f, vertices, edges, [&](HalfedgeH h) { out.insert(b.loop(h)); },
+      [&](VertexH v) {  // a lone vertex: its loop, when it is one of f's
+        for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l))
+          if (b.is_lone(l) && b.lone_vertex(l) == v) out.insert(l);
+      });
   return out;
 }
 

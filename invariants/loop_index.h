@@ -55,6 +55,29 @@ class LoopBoxIndex {
 // The box of a loop (halfedge_box of its sides; a lone vertex's point).
 geo::Box loop_box(const Body& b, LoopH l, double chordal);
 
+// Calls on_side(h) for each half-edge of f on a changed element (an edge of `edges`, or
+// an edge at a vertex of `vertices`), and on_lone(v) for each vertex of `vertices` on no
+// edge. Costs what the elements do, not what f holds.
+template <class OnSide, class OnLone>
+void for_each_changed_side(const Body& b, FaceH f, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges,
+                           OnSide on_side, OnLone on_lone) {
+  auto edge = [&](EdgeH e) {
+    for (unsigned s = 0; s < 2; ++s)
+      if (HalfedgeH h = halfedge_of(e, s); b.face(h) == f) on_side(h);
+  };
+  for (EdgeH e : edges)
+    if (b.alive(e)) edge(e);
+  for (VertexH v : vertices) {
+    if (!b.alive(v)) continue;
+    bool any = false;
+    for (HalfedgeH h : b.outgoing(v)) edge(edge_of(h)), any = true;
+    if (!any) on_lone(v);
+  }
+}
+
+// Whether f has more than `n` loops (walks at most n + 1 of them).
+bool has_more_loops_than(const Body& b, FaceH f, std::size_t n);
+
 // The loops of f through the changed elements (the edges, and the edges at the vertices).
 std::set<LoopH> loops_through(const Body& b, FaceH f, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges);
 

@@ -296,26 +296,17 @@ std::vector<LoopH> loops_near(const Body& b, FaceH f, const geo::Box& box) {
 // Found from the changed elements, not f's loops (a plate has tens of thousands).
 std::optional<geo::Box> near_change(const Body& b, const std::set<VertexH>& vertices, const std::set<EdgeH>& edges,
                                     FaceH f, const geo::Tolerances& tol) {
-  std::vector<LoopH> ls = b.loops_of(f);
-  if (ls.size() <= kManyLoops) return std::nullopt;
+  if (!has_more_loops_than(b, f, kManyLoops)) return std::nullopt;
   const double chordal = loop_chordal(tol);
   geo::Box box;
-  auto add_edge = [&](EdgeH e) {
-    for (unsigned side = 0; side < 2; ++side)
-      if (HalfedgeH h = halfedge_of(e, side); b.face(h) == f) {
+  for_each_changed_side(
+      b, f, vertices, edges,
+      [&](HalfedgeH h) {
         geo::Box hb = halfedge_box(b, h, chordal);
         box.add(hb.min);
         box.add(hb.max);
-      }
-  };
-  for (EdgeH e : edges)
-    if (b.alive(e)) add_edge(e);
-  for (VertexH v : vertices) {
-    if (!b.alive(v)) continue;
-    bool any = false;
-    for (HalfedgeH h : b.outgoing(v)) add_edge(edge_of(h)), any = true;
-    if (!any) box.add(b.point(v));  // a lone vertex (of f or elsewhere: a box that is too big is safe)
-  }
+      },
+      [&](VertexH v) { box.add(b.point(v)); });  // a lone vertex (of f or elsewhere: a box too big is safe)
   if (!box.empty()) box = geo::Box{box.min.array() - tol.length, box.max.array() + tol.length};
   return box;
 }
