@@ -33,6 +33,12 @@ class Journal {
   bool empty() const { return entries_.empty(); }
   // Operator names from entry `from` on, in order: what a repair did.
   std::vector<std::string> op_names(std::size_t from = 0) const;
+  // The handle indices an entry's extra list holds (the rings kef moved to the kept
+  // face); empty when it has none.
+  const std::vector<std::uint32_t>& extra_of(const JournalEntry& e) const {
+    static const std::vector<std::uint32_t> none;
+    return e.extra == JournalEntry::kNone || e.extra >= lists_.size() ? none : lists_[e.extra];
+  }
 
  private:
   friend class EulerImpl;

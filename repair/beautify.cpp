@@ -21,6 +21,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 namespace kintsugi {
 
@@ -126,6 +128,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     const double at_precision = options.lies_on > 0 ? options.lies_on : tol.precision;
     const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
     touched.reshaped = surfaces_set_since(b.journal(), tx.first_entry());
+    detail::touch_rearranged_loops(b, tx.first_entry(), touched);
     std::string invalid = region_validity(
         b, {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped, memo ? &memo->loops : nullptr}, tol,
         lies_on, at_precision);
@@ -397,5 +400,41 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   r.max_elements = g.max_elements;
   return r;
 }
+
+namespace detail {
+
+void touch_rearranged_loops(const Body& b, std::size_t from, Touched& touched) {
+  const Journal& j = b.journal();
+  std::set<LoopH> loops;
+  std::set<FaceH> faces;
+  for (std::size_t i = from; i < j.size(); ++i) {
+    const JournalEntry& e = j.entries()[i];
+    std::visit(
+        [&](const auto& r) {
+          using R = std::decay_t<decltype(r)>;
+          if constexpr (std::is_same_v<R, MvfsRecord> || std::is_same_v<R, MfkbRecord> ||
+                        std::is_same_v<R, MfkrhRecord>)
+            faces.insert(r.face);
+          if constexpr (std::is_same_v<R, MefRecord>) faces.insert(r.face);
+          if constexpr (std::is_same_v<R, KefRecord>)
+            for (std::uint32_t l : j.extra_of(e)) loops.insert(LoopH(l));
+          if constexpr (std::is_same_v<R, KemrRecord> || std::is_same_v<R, KfmrhRecord>) loops.insert(r.ring);
+        },
+        e.record);
+  }
+  for (FaceH f : faces)
+    if (b.alive(f))
+      for (LoopH l : b.loops_of(f)) loops.insert(l);
+  for (LoopH l : loops) {
+    if (!b.alive(l) || b.is_border(l)) continue;
+    if (b.is_lone(l)) {
+      touched.vertices.insert(b.lone_vertex(l));
+      continue;
+    }
+    for (HalfedgeH h : b.loop_halfedges(l)) touched.edges.insert(edge_of(h));
+  }
+}
+
+}  // namespace detail
 
 }  // namespace kintsugi

@@ -50,4 +50,12 @@ double face_area(const Body& b, FaceH f, const geo::Tolerances& tol);
 // A length or deviation as the reasons and notes print it (three significant digits).
 std::string fmt(double d);
 
+// The loops that joined a face from journal entry `from` on without an element of theirs
+// being changed: a new face's loops, the rings kef moved to the kept face, the ring kemr
+// made, kfmrh's ring and the ring mfkrh made a face of. The validity gate and the
+// detection near a repair take a face with many loops near its changed elements only
+// (invariants/region_validity.h), so these count as changed: their edges (a lone loop's
+// vertex) join `touched`.
+void touch_rearranged_loops(const Body& b, std::size_t from, Touched& touched);
+
 }  // namespace kintsugi::detail

@@ -7,6 +7,9 @@
 #include "invariants/geometry_check.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
+#include "kernel/euler.h"
+#include "kernel/transaction.h"
+#include "repair/beautify_detail.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
 #include "repair/pass.h"
@@ -323,6 +326,55 @@ TEST(Beautify, PinchThatAMergeBringsBelowTheToleranceIsRepairedInASecondRound) {
   beautify(b, tol);
   std::string why;
   EXPECT_TRUE(b.equals(once, &why)) << why;
+}
+
+}  // namespace
+}  // namespace kintsugi
+
+namespace kintsugi {
+namespace {
+
+// Loops that join a face without an element of theirs changing count as changed for the
+// gate and the re-detection near a face with many loops (detail::touch_rearranged_loops):
+// the ring kemr makes, the rings kef moves to the face it keeps, a new face's loop.
+TEST(TouchRearrangedLoops, RingsMovedAndMadeAndNewFacesJoinTheTouchedSet) {
+  Body b = build::box();
+  FaceH top;
+  for (FaceH f : b.faces())
+    if (b.point(b.loop_vertices(b.outer_loop(f)).front()).z() > 0.5 &&
+        b.point(b.loop_vertices(b.outer_loop(f))[2]).z() > 0.5)
+      top = f;
+  ASSERT_TRUE(top.valid());
+  Transaction tx(b);
+  // A strut into the top face, then kemr: a lone-vertex ring of the top face.
+  auto s = euler::mev(b, Corner::before(b.first(b.outer_loop(top))), geo::Vec3(0.5, 0.5, 1));
+  ASSERT_TRUE(s);
+  const std::size_t after_strut = b.journal().size();
+  auto ring = euler::kemr(b, s->x);
+  ASSERT_TRUE(ring) << ring.error().message;
+  Touched t;
+  detail::touch_rearranged_loops(b, after_strut, t);
+  EXPECT_TRUE(t.vertices.count(s->vertex));
+
+  // The top face cut in two by mef (the ring stays), then kef from the new face's side:
+  // the top face is killed and its ring moves to the new face.
+  const std::vector<HalfedgeH> hs = b.loop_halfedges(b.outer_loop(top));
+  auto cut = euler::mef(b, Corner::before(hs[0]), Corner::before(hs[2]));
+  ASSERT_TRUE(cut) << cut.error().message;
+  Touched made;
+  detail::touch_rearranged_loops(b, b.journal().size() - 1, made);
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(cut->face))) EXPECT_TRUE(made.edges.count(edge_of(h)));
+  const LoopH moved = ring->ring;
+  const FaceH ring_face = b.face(moved);
+  const HalfedgeH across = b.face(cut->a) == ring_face ? twin(cut->a) : cut->a;
+  const std::size_t before_kef = b.journal().size();
+  auto k = euler::kef(b, across);
+  ASSERT_TRUE(k) << k.error().message;
+  ASSERT_TRUE(b.alive(moved));
+  Touched merged;
+  detail::touch_rearranged_loops(b, before_kef, merged);
+  EXPECT_TRUE(merged.vertices.count(s->vertex)) << "the ring kef moved";
+  tx.rollback();
 }
 
 }  // namespace
