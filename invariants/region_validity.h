@@ -31,6 +31,8 @@
 //   * when it was (or the caller does not say), all its vertices and edges are checked
 //     on the new surface, and then only the loop checks and the external check look
 //     near the change.
+// (A loop that joined the face without changing — a ring kef moved, a new face's loops —
+// is one of the changed ones: beautify adds its elements to the region from the journal.)
 // Either way a crossing or a nesting among the loops left out is one the face had
 // before; a new crossing has a changed edge on one side, and so a loop near it on the
 // other. What the gate promises, that a repair makes nothing worse, still holds.
