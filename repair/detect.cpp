@@ -52,16 +52,28 @@ FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double
 // above still holds with room (for one loop, 4P·P/400 is a sixth of a square's area;
 // dividing by the loops keeps a plate's many rings from widening it). Both scale with
 // the model, so scaling model and tolerance together changes nothing.
-FaceInfo DetectContext::measure(FaceH f) const {
+namespace {
+// The coarse pass's sampling step for f and f's perimeter (see above); `length` measures
+// an edge (the context's cache, or element_geometry's edge_length).
+struct CoarseStep {
+  double chordal, perimeter;
+};
+template <class Length>
+CoarseStep coarse_step(const Body& b, FaceH f, const geo::Tolerances& tol, Length length) {
   double perimeter = 0.0;
   std::size_t loops = 0;
   for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
     ++loops;
-    b.for_each_halfedge(l, [&](HalfedgeH h) { perimeter += edge_length(edge_of(h)); });
+    b.for_each_halfedge(l, [&](HalfedgeH h) { perimeter += length(edge_of(h)); });
   }
   constexpr double kPerimeterShare = 400;
-  const double coarse =
-      std::max(tol.coarse_measure_chordal(), perimeter / (kPerimeterShare * double(std::max<std::size_t>(1, loops))));
+  return {std::max(tol.coarse_measure_chordal(), perimeter / (kPerimeterShare * double(std::max<std::size_t>(1, loops)))),
+          perimeter};
+}
+}  // namespace
+
+FaceInfo DetectContext::measure(FaceH f) const {
+  const auto [coarse, perimeter] = coarse_step(b, f, tol, [&](EdgeH e) { return edge_length(e); });
   if (coarse > chordal && std::isfinite(coarse)) {
     std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse);
     if (m) {
@@ -339,14 +351,8 @@ bool stays_ordinary(const Body& b, FaceH f, const geo::Box& box, const geo::Tole
       if (decides(it->second)) return *bounds = it->second, true;
       memo->faces.erase(it);
     }
-  double perimeter = 0.0;
-  std::size_t loops = 0;
-  for (LoopH l = b.outer_loop(f); l.valid(); l = b.next_in_face(l)) {
-    ++loops;
-    b.for_each_halfedge(l, [&](HalfedgeH h) { perimeter += edge_length(b, edge_of(h)); });
-  }
+  const auto [coarse, perimeter] = detail::coarse_step(b, f, tol, [&](EdgeH e) { return edge_length(b, e); });
   const double chordal = tol.measure_chordal();
-  const double coarse = std::max(tol.coarse_measure_chordal(), perimeter / (400.0 * double(std::max<std::size_t>(1, loops))));
   std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse);
   if (!m) return false;
   const double e = coarse + chordal;
