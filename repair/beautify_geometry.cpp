@@ -40,6 +40,38 @@ geo::Curve reversed(const geo::Curve& c) {
   return c;
 }
 
+// A polyline on a gap's border (a scanned edge with one face) whose end vertices a repair
+// moved: each point moves with the ends (the displacement interpolated along the
+// polyline by arc length) and then onto the face's surface, which the repair may have
+// refitted. Without this the polyline stays where it was, and a vertex the region solve
+// moved is off its curve (a second gap on the faces an edge-gap repair refitted).
+geo::Polyline follow_vertices(const Body& b, const geo::Polyline& old, const geo::Vec3& p0, const geo::Vec3& p1,
+                              FaceH face) {
+  geo::Polyline out = old;
+  std::vector<geo::Vec3>& pts = out.points;
+  if (pts.size() < 2) return out;
+  // The polyline may run either way along the edge.
+  const bool forward =
+      (pts.front() - p0).norm() + (pts.back() - p1).norm() <= (pts.front() - p1).norm() + (pts.back() - p0).norm();
+  const geo::Vec3 d0 = (forward ? p0 : p1) - pts.front(), d1 = (forward ? p1 : p0) - pts.back();
+  std::vector<double> at(pts.size(), 0.0);
+  for (std::size_t i = 1; i < pts.size(); ++i) at[i] = at[i - 1] + (pts[i] - pts[i - 1]).norm();
+  const double length = at.back();
+  const geo::Surface& s = b.surface(face);
+  const bool analytic = std::holds_alternative<geo::Plane>(s) || std::holds_alternative<geo::Cylinder>(s) ||
+                        std::holds_alternative<geo::Cone>(s) || std::holds_alternative<geo::Sphere>(s) ||
+                        std::holds_alternative<geo::Torus>(s);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double w = length > 0 ? at[i] / length : double(i) / double(pts.size() - 1);
+    pts[i] += (1 - w) * d0 + w * d1;
+    if (analytic && i > 0 && i + 1 < pts.size()) pts[i] = geo::closest_point(s, pts[i]).point;
+  }
+  // The ends exactly at the vertices.
+  pts.front() = forward ? p0 : p1;
+  pts.back() = forward ? p1 : p0;
+  return out;
+}
+
 }  // namespace
 
 
@@ -68,6 +100,9 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     // A gap's edge or a seam: no pair of faces to intersect. Lines follow their vertices.
     if (std::holds_alternative<geo::Line>(old) && !closed && (p1 - p0).norm() > 0)
       return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
+    const FaceH one = f.valid() ? f : g;
+    if (const auto* poly = std::get_if<geo::Polyline>(&old); poly && !closed && one.valid() && !(f.valid() && g.valid()))
+      return geo::Curve{follow_vertices(b, *poly, p0, p1, one)};
     return old;
   }
   const geo::Surface &sf = b.surface(f), &sg = b.surface(g);

@@ -284,6 +284,13 @@ std::vector<Maker> sliver_makers(const Body& b, const std::vector<EdgeH>& edges,
     if (!planar_sides(b, e)) continue;
     HalfedgeH h = halfedge_of(e, 0);
     if (b.degree(b.origin(h)) != 3 || b.degree(b.target(h)) != 3) continue;
+    // A scanned chamfer or fillet rounds a real edge. Between two faces within 10° of one
+    // plane (a face fitted twice, another defect) the chamfer plane meets its neighbours
+    // ill-conditioned and the "sliver" came out 0.003 tolerances wide and a whole edge
+    // long: a small face by area that no vertex can replace (found by
+    // Beautify.InjectedDefectsOfTypes7To11AreRepaired).
+    if (std::abs(outward_normal(b, b.face(h)).dot(outward_normal(b, b.face(twin(h))))) > std::cos(10 * M_PI / 180))
+      continue;
     if (straight_length(b, e) < 10 * tol) continue;  // a sliver is long: area / diagonal < tol
     FaceH a = b.face(h);
     std::uint64_t kind = rng.below(3);

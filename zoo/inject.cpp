@@ -5,6 +5,7 @@
 #include "geometry/curve.h"
 #include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
+#include "invariants/region_validity.h"
 #include "invariants/topology_check.h"
 #include "kernel/transaction.h"
 #include "zoo/defects.h"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 
 namespace kintsugi::zoo {
 
@@ -259,6 +261,18 @@ std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const
   // Try the candidates in a random order; keep the first that leaves a valid body.
   for (std::size_t i = candidates.size(); i > 1; --i) std::swap(candidates[i - 1], candidates[rng.below(i)]);
   geo::Tolerances tols = geo::Tolerances::for_model(tolerance, model_size(b));
+  // Loops that cross themselves or each other in a face's parameter domain: a defect made
+  // by moving corners to where tilted planes meet can throw a corner across the face (a
+  // split of a face beside an earlier split, whose planes are nearly parallel: found by
+  // Beautify.InjectedDefectsOfTypes7To11AreRepaired). Only crossings the body did not
+  // already have count against the defect.
+  auto crossings = [&] {
+    std::set<std::string> out;
+    const std::vector<FaceH> fs = b.faces();
+    for (const Violation& v : loop_violations(b, std::set<FaceH>(fs.begin(), fs.end()), tols)) out.insert(to_string(v));
+    return out;
+  };
+  const std::set<std::string> crossed_before = candidates.empty() ? std::set<std::string>{} : crossings();
   std::string last;
   for (const Site& s : candidates) {
     Transaction tx(b);
@@ -268,6 +282,12 @@ std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const
       KnownDefect d = s.make(b);
       std::vector<Violation> bad = check_topology(b);
       std::vector<std::string> off = geometry_offences(b, tols.precision);
+      if (bad.empty() && off.empty())
+        for (const std::string& c : crossings())
+          if (!crossed_before.count(c)) {
+            off.push_back(c);
+            break;
+          }
       if (bad.empty() && off.empty()) {
         if (before) {
           s.clean(*before);

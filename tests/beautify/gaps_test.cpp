@@ -175,6 +175,26 @@ TEST(Gaps, GapOverAShortEdgeClosesIntoTwoVerticesAndAnEdge) {
   EXPECT_EQ(r.problems[0].note, "two vertices and an edge") << describe(r);
 }
 
+// Two scanned gaps on the edge between a face and the piece of it fitted twice (a pyramid's
+// base split and tilted, then two gaps on the split edge): closing the first gap refits
+// both faces, which moves the second gap's vertices; the second gap's polyline edges must
+// follow them, or the repair is refused with its vertices off their curves ("v13 from the
+// curve of e21 is 0.000167 away"; found by Beautify.InjectedDefectsOfTypes7To11AreRepaired).
+TEST(Gaps, ASecondGapOnRefittedFacesFollowsItsVertices) {
+  const double t = 0.02;
+  Body b = build::pyramid(build::regular_polygon(4, 1), 1);
+  const Counts clean = b.counts();
+  std::string err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::same_geometry_faces, 0, std::nullopt, t, &err)) << err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::edge_gap, 34437834, std::nullopt, t, &err)) << err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::edge_gap, 2800, std::nullopt, t, &err)) << err;
+  ASSERT_EQ(detect(b, tol_for(b, t)).count(ProblemType::edge_gap), 2u);
+  BeautifyReport r = beautify(b, tol_for(b, t));
+  for (const auto& p : r.problems) EXPECT_TRUE(p.repaired()) << describe(r);
+  EXPECT_EQ(b.counts(), clean) << describe(r);
+  EXPECT_TRUE(check_topology(b).empty());
+}
+
 // ---- the zoo ------------------------------------------------------------------------
 
 struct Base {
