@@ -83,6 +83,10 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
                     const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr,
                     const FaceBoundsMemo* memo = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
+  if (auto u = options.unsolved.find({p.type, p.elements}); u != options.unsolved.end()) {
+    entry.reason = u->second;
+    return entry;
+  }
   Transaction tx(b);
   std::string why, note, solve_why;
   detail::OriginalFaces original;
@@ -312,11 +316,13 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
   run_queue(b, tol, pass, std::move(mine), report, opt, left);
 }
 
-BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options_in) {
+namespace {
+
+// One run of the pipeline. `unsolved` gets the repairs still kept at the tolerance only
+// when it ends (their problem, and why the solve failed).
+BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options,
+                             std::map<std::pair<ProblemType, std::vector<Element>>, std::string>& unsolved) {
   using clock = std::chrono::steady_clock;
-  // What the input already had off its curves and surfaces: repairs must not make it worse.
-  BeautifyOptions options = options_in;
-  if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
   BeautifyReport r;
   r.counts_before = b.counts();
   auto t0 = clock::now();
@@ -363,6 +369,20 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
     for (const auto& by : q.by_type) any_left = any_left || !by.empty();
     if (repaired == 0 || !any_left) break;
   }
+  // The first repair left unsolved, and every later one whose faces it did not touch:
+  // a later one beside it may be unsolved only because of it (its solve meets the
+  // vertex the first left off its surfaces), and is tried again in the next run.
+  std::set<FaceH> near_unsolved;
+  for (const Unsettled& u : unsettled) {
+    bool beside = false;
+    for (FaceH f : u.touched.faces) beside = beside || near_unsolved.count(f);
+    near_unsolved.insert(u.touched.faces.begin(), u.touched.faces.end());
+    if (beside) continue;
+    const RepairEntry& e = r.problems[u.entry];
+    unsolved[{e.problem.type, e.problem.elements}] =
+        "its geometry could not be solved to the modelling precision, even after the later repairs, and the "
+        "model would not be valid (" + e.note + ")";
+  }
   // A problem refused in one round and taken up again in a later one is reported once,
   // with its last outcome.
   {
@@ -399,6 +419,36 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   r.max_deviation = g.max_deviation;
   r.max_elements = g.max_elements;
   return r;
+}
+
+}  // namespace
+
+// Unsolved repairs. A repair whose region solve fails is kept when its geometry is
+// consistent to the tolerance, because what made the solve fail is often removed by a
+// later pass (settle()). When the run ends with such a repair still unsolved, the model
+// is off its curves and surfaces by up to the tolerance: not valid, and a repair must
+// leave a valid model or change nothing. The repair cannot be undone alone (later
+// repairs built on it), so the whole run is undone (one transaction around it) and run
+// again with those problems refused (the first, and the later ones it did not touch: one
+// beside it may have failed because of it). The pipeline is deterministic, so everything
+// before them happens as before and they are met under the same names. Each run refuses
+// at least one more problem, so this ends.
+BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options_in) {
+  // What the input already had off its curves and surfaces: repairs must not make it worse.
+  BeautifyOptions options = options_in;
+  if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
+  for (;;) {
+    Transaction whole(b);
+    std::map<std::pair<ProblemType, std::vector<Element>>, std::string> unsolved;
+    BeautifyReport r = beautify_once(b, tol, options, unsolved);
+    std::size_t added = 0;
+    for (auto& [key, why] : unsolved) added += options.unsolved.emplace(key, why).second;
+    if (unsolved.empty() || added == 0) {
+      whole.commit();
+      return r;
+    }
+    whole.rollback();
+  }
 }
 
 namespace detail {

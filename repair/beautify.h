@@ -21,6 +21,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,12 @@ struct BeautifyOptions {
   // The validity gate's "lies on" limit (invariants/region_validity.h); 0: beautify() and
   // run_pass() set it to max(precision, the input's largest deviation).
   double lies_on = 0.0;
+  // Problems not to repair, by type and elements as detected, with why. beautify() fills
+  // it itself: a run that ends with repairs whose geometry could not be solved to the
+  // modelling precision (kept consistent to the tolerance only, waiting for later repairs
+  // that did not help) would write a model that is not valid, so the run is undone and
+  // done again without those repairs (beautify.cpp, "Unsolved repairs").
+  std::map<std::pair<ProblemType, std::vector<Element>>, std::string> unsolved;
 };
 
 // The whole pipeline, passes 1..11.
