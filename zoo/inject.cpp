@@ -288,11 +288,17 @@ std::optional<Injected> inject(Body& b, ProblemType t, std::uint64_t seed, const
             off.push_back(c);
             break;
           }
+      if (bad.empty() && off.empty() && before) {
+        // The clean twin must be a consistent model too: a block made flush with the face
+        // across an edge is one face with it only when that face is square to the block's
+        // face (on a roof's slope the "designer" had a face off its own plane, and the
+        // scan-parts score counted the repair's correct extra face as a failure).
+        s.clean(*before);
+        if (std::vector<std::string> twin = geometry_offences(*before, tols.precision); !twin.empty())
+          off.push_back("the clean twin is not consistent: " + twin[0]);
+      }
       if (bad.empty() && off.empty()) {
-        if (before) {
-          s.clean(*before);
-          *clean = std::move(*before);
-        }
+        if (before) *clean = std::move(*before);
         tx.commit();
         return Injected{d, std::string(problem_name(t)) + " at " + s.where + " (size " + std::to_string(d.size) + ")"};
       }
