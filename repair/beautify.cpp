@@ -21,6 +21,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <type_traits>
 #include <variant>
 
@@ -66,6 +67,7 @@ bool all_alive(const Body& b, const Problem& p) {
 // modelling precision then (see attempt()): solved again once later repairs are done.
 struct Unsettled {
   std::size_t entry;  // its index in BeautifyReport::problems
+  int round = 0;      // the pipeline's round that made it
   Touched touched;
   detail::OriginalFaces original;
 };
@@ -224,7 +226,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo);
     const bool ok = entry.repaired();
     report.problems.push_back(std::move(entry));
-    if (ok && unsettled && !original.empty()) unsettled->push_back({report.problems.size() - 1, touched, std::move(original)});
+    if (ok && unsettled && !original.empty()) unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original)});
     if (!ok) {
       left_of_type.push_back(std::move(p));
       continue;
@@ -318,10 +320,13 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
 
 namespace {
 
-// One run of the pipeline. `unsolved` gets the repairs still kept at the tolerance only
-// when it ends (their problem, and why the solve failed).
-BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options,
-                             std::map<std::pair<ProblemType, std::vector<Element>>, std::string>& unsolved) {
+// Repairs refused in one round of the pipeline: (round, type, elements) -> why.
+using RoundVetoes = std::map<std::tuple<int, ProblemType, std::vector<Element>>, std::string>;
+
+// One run of the pipeline, refusing the repairs in `vetoes` in their rounds. `unsolved`
+// gets the repairs still kept at the tolerance only when it ends.
+BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options_in,
+                             const RoundVetoes& vetoes, RoundVetoes& unsolved) {
   using clock = std::chrono::steady_clock;
   BeautifyReport r;
   r.counts_before = b.counts();
@@ -345,6 +350,11 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
   std::vector<Unsettled> unsettled;
   for (int round = 0; round < kMaxRounds; ++round) {
     int repaired = 0;
+    // Refused in this round only: in a later round, after the other repairs, the same
+    // problem may solve (as it would in a second beautify: idempotence).
+    BeautifyOptions options = options_in;
+    for (const auto& [key, why] : vetoes)
+      if (std::get<0>(key) == round) options.unsolved[{std::get<1>(key), std::get<2>(key)}] = why;
     for (ProblemType t : kAllProblemTypes) {
       auto start = clock::now();
       q.refresh(b, tol, since_refresh);
@@ -354,7 +364,9 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
       q.by_type[slot(t)].clear();
       std::vector<Problem> left;
       const std::size_t first_entry = r.problems.size();
+      const std::size_t made = unsettled.size();
       since_refresh = run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled, &q.memo);
+      for (std::size_t i = made; i < unsettled.size(); ++i) unsettled[i].round = round;
       for (std::size_t i = first_entry; i < r.problems.size(); ++i) repaired += r.problems[i].repaired();
       q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
       r.seconds[slot(t)] += std::chrono::duration<double>(clock::now() - start).count();
@@ -379,7 +391,7 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
     near_unsolved.insert(u.touched.faces.begin(), u.touched.faces.end());
     if (beside) continue;
     const RepairEntry& e = r.problems[u.entry];
-    unsolved[{e.problem.type, e.problem.elements}] =
+    unsolved[{u.round, e.problem.type, e.problem.elements}] =
         "its geometry could not be solved to the modelling precision, even after the later repairs, and the "
         "model would not be valid (" + e.note + ")";
   }
@@ -429,20 +441,23 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
 // is off its curves and surfaces by up to the tolerance: not valid, and a repair must
 // leave a valid model or change nothing. The repair cannot be undone alone (later
 // repairs built on it), so the whole run is undone (one transaction around it) and run
-// again with those problems refused (the first, and the later ones it did not touch: one
-// beside it may have failed because of it). The pipeline is deterministic, so everything
-// before them happens as before and they are met under the same names. Each run refuses
-// at least one more problem, so this ends.
+// again with those problems refused in the round that made them (the first, and the
+// later ones it did not touch: one beside it may have failed because of it). The
+// pipeline is deterministic, so everything before them happens as before and they are
+// met under the same names. A later round tries them again after the other repairs, as
+// a second beautify would. Each run refuses at least one more (problem, round) pair, so
+// this ends.
 BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptions& options_in) {
   // What the input already had off its curves and surfaces: repairs must not make it worse.
   BeautifyOptions options = options_in;
   if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
+  RoundVetoes vetoes;
   for (;;) {
     Transaction whole(b);
-    std::map<std::pair<ProblemType, std::vector<Element>>, std::string> unsolved;
-    BeautifyReport r = beautify_once(b, tol, options, unsolved);
+    RoundVetoes unsolved;
+    BeautifyReport r = beautify_once(b, tol, options, vetoes, unsolved);
     std::size_t added = 0;
-    for (auto& [key, why] : unsolved) added += options.unsolved.emplace(key, why).second;
+    for (auto& [key, why] : unsolved) added += vetoes.emplace(key, why).second;
     if (unsolved.empty() || added == 0) {
       whole.commit();
       return r;

@@ -27,6 +27,14 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
 // Empty on success, else why not.
 std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol);
 
+// A seam (an edge with one face on both sides, where a sphere, cylinder, cone or torus
+// closes) runs along u = 0 of its face's surface. A seam vertex that a repair moved round
+// the axis (a sphere's rim vertex, placed where a refitted plane meets the sphere) would
+// leave it: the surface is turned about its axis (the same surface, parametrised from
+// the vertex's meridian) so that u = 0 passes through the vertex again, by at most
+// 0.1 rad. derive_edge_curve then gives the seam the iso-curve there.
+void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched);
+
 // Puts each vertex at the point nearest its guess where the surfaces of its faces meet
 // (geo::meet_point; least squares for more than three), then re-derives the curves of
 // every edge at those vertices. Fails when the surfaces do not meet within tolerance or

@@ -72,7 +72,62 @@ geo::Polyline follow_vertices(const Body& b, const geo::Polyline& old, const geo
   return out;
 }
 
+// The frame of a surface with a seam at u = 0 about frame.z, or null.
+const geo::Frame* seam_frame(const geo::Surface& s) {
+  if (const auto* x = std::get_if<geo::Sphere>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Cylinder>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Cone>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Torus>(&s)) return &x->frame;
+  return nullptr;
+}
+
+// The seam's iso-curve through a vertex off the axis: a sphere's meridian circle, a
+// torus's tube circle at u = 0. nullopt for the others (their seams are lines).
+std::optional<geo::Circle> seam_circle(const geo::Surface& s) {
+  if (const auto* x = std::get_if<geo::Sphere>(&s)) {
+    geo::Circle c;
+    c.frame.origin = x->frame.origin;
+    c.frame.x = x->frame.x;
+    c.frame.z = x->frame.z.cross(x->frame.x).normalized();
+    c.radius = x->radius;
+    return c;
+  }
+  if (const auto* x = std::get_if<geo::Torus>(&s)) {
+    geo::Circle c;
+    c.frame.origin = x->frame.origin + x->major_radius * x->frame.x;
+    c.frame.x = x->frame.x;
+    c.frame.z = x->frame.z.cross(x->frame.x).normalized();
+    c.radius = x->minor_radius;
+    return c;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched) {
+  for (VertexH v : moved)
+    for (HalfedgeH h : b.outgoing(v)) {
+      const FaceH f = b.face(h);
+      if (!f.valid() || b.face(twin(h)) != f) continue;
+      geo::Surface s = b.surface(f);
+      const geo::Frame* frame = seam_frame(s);
+      if (!frame) continue;
+      const geo::Vec3 r = b.point(v) - frame->origin;
+      const geo::Vec3 across = r - r.dot(frame->z) * frame->z;
+      if (!(across.norm() > tol.precision)) continue;  // on the axis (a pole): on every meridian
+      const geo::Vec3 x = across.normalized();
+      const double turn = std::atan2(frame->x.cross(x).dot(frame->z), frame->x.dot(x));
+      if (std::abs(turn) > 0.1 || x == frame->x) continue;
+      std::visit(
+          [&](auto& surface) {
+            if constexpr (requires { surface.frame; }) surface.frame.x = x;
+          },
+          s);
+      b.set_surface(f, s, b.same_sense(f));
+      touched.faces.insert(f);
+    }
+}
 
 
 std::vector<FaceH> faces_around(const Body& b, VertexH v) {
@@ -100,6 +155,14 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     // A gap's edge or a seam: no pair of faces to intersect. Lines follow their vertices.
     if (std::holds_alternative<geo::Line>(old) && !closed && (p1 - p0).norm() > 0)
       return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
+    if (f.valid() && f == g && !closed) {
+      if (auto c = seam_circle(b.surface(f)); c && std::holds_alternative<geo::Circle>(old)) {
+        // Oriented like the present seam.
+        if (geo::tangent(geo::Curve{*c}, geo::parameter(geo::Curve{*c}, p0)).dot(geo::tangent(old, geo::parameter(old, p0))) < 0)
+          c->frame.z = -c->frame.z;
+        return geo::Curve{*c};
+      }
+    }
     const FaceH one = f.valid() ? f : g;
     if (const auto* poly = std::get_if<geo::Polyline>(&old); poly && !closed && one.valid() && !(f.valid() && g.valid()))
       return geo::Curve{follow_vertices(b, *poly, p0, p1, one)};
@@ -116,6 +179,20 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
       return std::nullopt;
     }
     return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
+  }
+  // A straight edge whose chord lies on both surfaces (checked at three inner points: a
+  // line meeting a quadric in three points, or a torus in five, lies on it) is that
+  // chord. Where a plane touches a cylinder along a ruling (a fillet's tangent edge) the
+  // intersection is a double root: intersect() finds the line only to about 1e-5, and
+  // the vertices, placed where three faces meet, are then off it.
+  if (std::holds_alternative<geo::Line>(old) && !closed && (p1 - p0).norm() > tol.precision) {
+    bool on = true;
+    for (double t : {0.25, 0.5, 0.75}) {
+      const geo::Vec3 q = p0 + t * (p1 - p0);
+      on = on && std::abs(geo::signed_distance(sf, q)) <= tol.precision &&
+           std::abs(geo::signed_distance(sg, q)) <= tol.precision;
+    }
+    if (on) return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
   }
   // The region: the vertices and the present curve, with a margin.
   geo::Box region;
@@ -202,6 +279,9 @@ std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Ve
       touched.faces.insert(f);
     }
   }
+  std::vector<VertexH> placed;
+  for (auto [v, p] : points) placed.push_back(v);
+  align_seams(b, placed, tol, touched);
   std::set<EdgeH> edges;
   for (auto [v, p] : points)
     for (HalfedgeH h : b.outgoing(v)) edges.insert(edge_of(h));

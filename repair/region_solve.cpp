@@ -407,6 +407,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     touched.vertices.insert(vlist[i]);
     for (HalfedgeH h : b.outgoing(vlist[i])) edges.insert(edge_of(h));
   }
+  align_seams(b, vlist, tol, touched);
   for (EdgeH e : edges) {
     std::string why;
     auto c = derive_edge_curve(b, e, tol, &why);

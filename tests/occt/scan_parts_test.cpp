@@ -339,6 +339,18 @@ void expect_case_passes(std::uint64_t base, int i) {
 // pyramid5, `kintsugi audit --trials 15 --seed 11 --pass small_face_chain`).
 TEST(ScanParts, SmallFaceNotchPinchIsResolvedByTheChainRepair) { expect_case_passes(2, 64); }
 
+// A pinch beside a spherical pocket: the repair refits the plate's plane, the pocket's
+// rim vertex moves round the sphere's axis, and the sphere's seam (a meridian from the
+// pole to that vertex) must follow it (detail::align_seams; refused before with "v11 from
+// the curve of e17 is 1.92e-05 away").
+TEST(ScanParts, SphereSeamFollowsItsRimVertex) { expect_case_passes(29, 15); }
+
+// A gap at a fillet's tangent edge closes into one vertex: the edge between the plane
+// and the fillet's cylinder is a ruling, which intersect() finds only to about 1e-5 (a
+// double root); the chord through its vertices lies on both (refused before with "v13
+// from the curve of e27 is 2.97e-05 away").
+TEST(ScanParts, GapAtAFilletsTangentEdgeClosesOnTheRuling) { expect_case_passes(31, 86); }
+
 // Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
 // (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
 // judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
