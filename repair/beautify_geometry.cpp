@@ -217,7 +217,36 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     return std::nullopt;
   }
   geo::Curve c = curves[pick->index];
-  // Orientation: like the edge's present curve at its start (the curve runs along h).
+  // Orientation. A closed curve (a circle) cut between two vertices has two arcs: the one
+  // the edge's present curve runs along, judged by the present curve's middle point (the
+  // tangent at the start misleads when the present curve is a gap's border, which leaves
+  // the junction across the circle: the long way round then crossed the face's other
+  // edges). Otherwise like the present curve at its start (the curve runs along h).
+  const double period = geo::is_closed(c) ? geo::period(c) : 0.0;
+  if (period > 0 && !std::holds_alternative<std::monostate>(old) && (p1 - p0).norm() > tol.precision) {
+    // The point halfway along the present curve (a straight one: the chord's middle,
+    // which projects onto the shorter arc).
+    const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
+    double half = 0;
+    for (std::size_t i = 1; i < along.size(); ++i) half += (along[i] - along[i - 1]).norm() / 2;
+    geo::Vec3 mid = along.back();
+    for (std::size_t i = 1; i < along.size(); ++i) {
+      const double step = (along[i] - along[i - 1]).norm();
+      if (step >= half) {
+        mid = along[i - 1] + (step > 0 ? half / step : 0.0) * (along[i] - along[i - 1]);
+        break;
+      }
+      half -= step;
+    }
+    auto ahead = [&](const geo::Curve& k, const geo::Vec3& q) {
+      double x = std::fmod(geo::parameter(k, q) - geo::parameter(k, p0), period);
+      return x < 0 ? x + period : x;
+    };
+    if (along.size() >= 2) {
+      if (ahead(c, mid) > ahead(c, p1)) c = reversed(c);
+      return c;
+    }
+  }
   geo::Vec3 want = (p1 - p0);
   if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
   if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);

@@ -104,7 +104,21 @@ std::string repair_same_geometry(RepairContext& c) {
       break;
     }
     if (progress) continue;
-    auto r = euler::kemr(b, halfedge_of(rest.front(), 0));
+    // kemr(h) makes the ring of the half-edges from next(h) to prev(twin(h)): pick the
+    // side whose piece encloses less (the inner one). A boss whose pinch was zipped to the
+    // edge between the two faces has its footprint bounded by both: removing their last
+    // common edge leaves the footprint as a ring, and taking the outer boundary for the
+    // ring turned the merged face inside out.
+    auto enclosed = [&](HalfedgeH h) {
+      geo::Vec3 n = geo::Vec3::Zero();
+      std::vector<geo::Vec3> pts;
+      for (HalfedgeH x = b.next(h); x != twin(h); x = b.next(x)) pts.push_back(b.point(b.origin(x)));
+      for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
+      return n.norm();
+    };
+    HalfedgeH cut = halfedge_of(rest.front(), 0);
+    if (enclosed(twin(cut)) < enclosed(cut)) cut = twin(cut);
+    auto r = euler::kemr(b, cut);
     if (!r) return std::string("kemr refused: ") + r.error().message;
     rest.erase(rest.begin());
   }

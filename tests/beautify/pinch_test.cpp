@@ -4,6 +4,7 @@
 // (Table 2: 10 faces, 24 edges); the pinches of objects 8 and 10; and the unrealisable
 // case of its Figure 32(b), refused with the body unchanged.
 #include "invariants/element_geometry.h"
+#include "io/native_json.h"
 #include "invariants/geometry_check.h"
 #include "invariants/topology_check.h"
 #include "kernel/builders.h"
@@ -250,6 +251,32 @@ TEST(Pinch, AnUnsolvedRepairIsRefusedAndTheOthersAreStillMade) {
   EXPECT_EQ(refused, 1) << describe(rep);
   EXPECT_EQ(b.counts(), with_pinch) << describe(rep);
   EXPECT_LE(check_geometry(b, tol.precision).max_deviation, tol.precision) << describe(rep);
+}
+
+// A pyramid's base fitted twice (split, one half tilted) with a boss on the tilted half
+// near the split line: pass 4 zips the boss to the split edge (a pinch, by the letter of
+// the definition), and pass 8 then merges the two halves across what is left of that edge.
+// Their last common edge leaves the boss's footprint as a ring of the merged face; kemr
+// made the outer boundary the ring instead, and the merge was refused as turning the face
+// inside out (found by Beautify.InjectedDefectsOfTypes7To11AreRepaired).
+TEST(Pinch, ABossZippedToASplitLineIsARingAgainWhenTheHalvesMerge) {
+  // The model the property made (zoo::inject same_geometry_faces seed 0, pinched_face
+  // seed 598760485 on a pyramid; the file keeps its loops' first half-edges, which decide
+  // the side kemr was given).
+  std::string err;
+  auto doc = io::read_native_file(std::string(KINTSUGI_TEST_DATA_DIR) + "/native/boss_zipped_to_split_line.json", &err);
+  ASSERT_TRUE(doc) << err;
+  Body& b = doc->body;
+  const geo::Tolerances tol = geo::Tolerances::for_model(0.02, model_size(b));
+  ASSERT_EQ(pinches(b, tol).size(), 1u);
+  BeautifyReport rep = beautify(b, tol);
+  for (const RepairEntry& e : rep.problems) EXPECT_TRUE(e.repaired()) << describe(rep);
+  EXPECT_TRUE(detect(b, tol).problems.empty()) << describe(rep);
+  EXPECT_TRUE(check_topology(b).empty());
+  // The pyramid's five faces and the boss's five; the base has the boss as a ring.
+  EXPECT_EQ(b.counts().faces, 10u) << describe(rep);
+  EXPECT_EQ(b.counts().loops, 11u) << describe(rep);
+  EXPECT_LE(check_geometry(b, tol.precision).max_deviation, tol.precision);
 }
 
 }  // namespace

@@ -351,6 +351,18 @@ TEST(ScanParts, SphereSeamFollowsItsRimVertex) { expect_case_passes(29, 15); }
 // from the curve of e27 is 2.97e-05 away").
 TEST(ScanParts, GapAtAFilletsTangentEdgeClosesOnTheRuling) { expect_case_passes(31, 86); }
 
+// Edge gaps on a circular edge (a grooved ring's bore, a shaft's shoulder): the new
+// edge is an arc of the circle where plane and cylinder meet, and it must be the arc the
+// gap spans, not the rest of the circle. Its present curve (the gap's joined border) left
+// the junction across the circle, so orienting by its tangent took the long way round:
+// a loop crossing itself, a face inside out, or (without OpenCASCADE's gate) an output
+// BRepCheck called unorientable. Now judged by the present curve's middle.
+TEST(ScanParts, EdgeGapOnACircleClosesAlongTheShortArc) {
+  expect_case_passes(29, 49);
+  expect_case_passes(37, 169);
+  expect_case_passes(37, 193);
+}
+
 // Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
 // (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
 // judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
