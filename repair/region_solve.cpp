@@ -261,6 +261,34 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::vector<std::pair<double, std::size_t>> vertices_too_far;  // distance, vertex
   };
   const double w_hard = 1.0 / tol.precision, w_data = 1.0 / tol.length, w_prior = 1e-3 / tol.length;
+  // Faces tied to one plane weigh in by area, as the scanned points they were fitted to
+  // would: every face has about the same number of samples (corners and edge midpoints),
+  // so a boss side zipped against a long plate side tilted the shared plane towards
+  // itself, and the plate's far corners moved further than the tolerance (bracket, scan-
+  // parts score). Each face's residuals are scaled by sqrt(its area / its group's
+  // largest), so its share of the cost is its share of the area.
+  std::vector<double> w_face(faces.size(), w_data);
+  {
+    std::map<std::size_t, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < faces.size(); ++i) groups[tie[i]].push_back(i);
+    for (const auto& [root_index, members] : groups) {
+      if (members.size() < 2) continue;
+      std::vector<double> area;
+      double largest = 0;
+      for (std::size_t i : members) {
+        double a = 0;
+        try {
+          a = face_area(b, faces[i], tol);
+        } catch (const std::exception&) {
+        }
+        area.push_back(std::isfinite(a) ? a : 0.0);
+        largest = std::max(largest, area.back());
+      }
+      if (!(largest > 0)) continue;
+      for (std::size_t k = 0; k < members.size(); ++k)
+        w_face[members[k]] = w_data * std::sqrt(std::max(area[k] / largest, 1e-6));
+    }
+  }
   auto run = [&](std::size_t skip) {
     double hard = w_hard;  // the hard terms' weight of the current stage
     std::vector<SurfaceParams> params(faces.size());
@@ -283,7 +311,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::vector<double*> blocks;
     for (std::size_t i = 0; i < faces.size(); ++i)
       for (const auto& s : original.at(faces[i]).samples) {
-        ceres::CostFunction* f = on_solved_surface(solved_params(i), false, s, &w_data, blocks);
+        ceres::CostFunction* f = on_solved_surface(solved_params(i), false, s, &w_face[i], blocks);
         problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
       }
     for (std::size_t i = 0; i < vlist.size(); ++i)

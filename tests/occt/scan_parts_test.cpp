@@ -363,6 +363,15 @@ TEST(ScanParts, EdgeGapOnACircleClosesAlongTheShortArc) {
   expect_case_passes(37, 193);
 }
 
+// A bracket's boss zipped against the plate's long side: the two planes are tied into one
+// in the region solve, and the long side must not tilt towards the small boss side (the
+// samples of tied faces weigh by area; before, the plate's far corners moved 1.3
+// tolerances and the pinch was refused).
+TEST(ScanParts, ATiedPlaneFollowsTheLargerFace) {
+  expect_case_passes(41, 111);
+  expect_case_passes(47, 111);
+}
+
 // Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
 // (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
 // judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
