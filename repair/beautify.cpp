@@ -106,7 +106,8 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     // tolerance (the check below), with the solve's reason in the note; otherwise the
     // reason names the constraints that cannot be met together.
     if (why.empty()) {
-      detail::RegionSolve solve = detail::solve_region(b, touched, original, tol);
+      detail::RegionSolve solve =
+          detail::solve_region(b, touched, original, tol, p.type == ProblemType::pinched_face);
       solve_why = solve.why;
       entry.max_residual = solve.max_residual;
       entry.solve_seconds = solve.seconds;
@@ -276,7 +277,7 @@ Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unse
     std::string why;
     detail::RegionSolve s;
     try {
-      s = detail::solve_region(b, t, u.original, tol);
+      s = detail::solve_region(b, t, u.original, tol, r.problems[u.entry].problem.type == ProblemType::pinched_face);
       why = s.why;
       if (why.empty()) {
         double dev = detail::local_deviation(b, t, tol, &why);

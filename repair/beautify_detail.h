@@ -32,7 +32,8 @@ std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, con
 // the axis (a sphere's rim vertex, placed where a refitted plane meets the sphere) would
 // leave it: the surface is turned about its axis (the same surface, parametrised from
 // the vertex's meridian) so that u = 0 passes through the vertex again, by at most
-// 0.1 rad. derive_edge_curve then gives the seam the iso-curve there.
+// 0.1 rad, when the seam's other end is on the axis (a pole). derive_edge_curve then
+// gives the seam the iso-curve there.
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched);
 
 // Puts each vertex at the point nearest its guess where the surfaces of its faces meet

@@ -113,9 +113,17 @@ void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Toleranc
       geo::Surface s = b.surface(f);
       const geo::Frame* frame = seam_frame(s);
       if (!frame) continue;
+      auto off_axis = [&](VertexH w) {
+        const geo::Vec3 q = b.point(w) - frame->origin;
+        return (q - q.dot(frame->z) * frame->z).norm() > tol.precision;
+      };
+      // Only a seam from the axis (a sphere's or cone's pole) to one vertex: with both
+      // ends off the axis (a cylinder's or a cone frustum's seam) turning to one end can
+      // leave the other just below u = 0, where the parameter wraps to 2π and the seam's
+      // curve in the face's domain would cross it (OpenCASCADE: unorientable face).
+      if (off_axis(b.target(h)) || !off_axis(v)) continue;
       const geo::Vec3 r = b.point(v) - frame->origin;
       const geo::Vec3 across = r - r.dot(frame->z) * frame->z;
-      if (!(across.norm() > tol.precision)) continue;  // on the axis (a pole): on every meridian
       const geo::Vec3 x = across.normalized();
       const double turn = std::atan2(frame->x.cross(x).dot(frame->z), frame->x.dot(x));
       if (std::abs(turn) > 0.1 || x == frame->x) continue;

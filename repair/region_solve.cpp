@@ -110,7 +110,8 @@ double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   return m;
 }
 
-RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol);
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
+                                 bool weigh_zipped_by_area);
 
 }  // namespace
 
@@ -143,16 +144,18 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
   return out;
 }
 
-RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
+RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
+                         bool weigh_zipped_by_area) {
   const auto start = std::chrono::steady_clock::now();
-  RegionSolve out = solve_region_untimed(b, touched, original, tol);
+  RegionSolve out = solve_region_untimed(b, touched, original, tol, weigh_zipped_by_area);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
 namespace {
 
-RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol) {
+RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
+                                 bool weigh_zipped_by_area) {
   RegionSolve out;
   std::set<FaceH> region;
   std::set<VertexH> verts;
@@ -191,6 +194,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   // repair made adjacent, that one plane fits both faces' samples within the tolerance
   // (pass 8's refit test: two fits of one scanned plane differ by up to twice that).
   std::vector<std::size_t> tie(faces.size());
+  std::vector<std::pair<std::size_t, std::size_t>> zipped_pairs;  // tied, not adjacent before
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = i;
   auto root = [&](std::size_t i) {
     while (tie[i] != i) i = tie[i] = tie[tie[i]];
@@ -206,7 +210,8 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         if (!std::holds_alternative<geo::Plane>(b.surface(g))) continue;
         const OriginalFace &oi = original.at(faces[i]), &og = original.at(g);
         bool one_plane;
-        if (oi.neighbours.count(g)) {
+        const bool zipped = !oi.neighbours.count(g);
+        if (!zipped) {
           one_plane = geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples, tol.length) <= tol.length;
         } else {
           std::vector<geo::Vec3> both = oi.samples;
@@ -214,7 +219,10 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
           geo::SurfaceFit fit = geo::fit_surface_like(oi.surface, both);
           one_plane = fit.problem.empty() && fit.max_deviation <= tol.length;
         }
-        if (one_plane) tie[root(it->second)] = root(i);
+        if (one_plane) {
+          if (zipped) zipped_pairs.push_back({i, it->second});
+          tie[root(it->second)] = root(i);
+        }
       }
   }
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = root(i);
@@ -261,18 +269,24 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::vector<std::pair<double, std::size_t>> vertices_too_far;  // distance, vertex
   };
   const double w_hard = 1.0 / tol.precision, w_data = 1.0 / tol.length, w_prior = 1e-3 / tol.length;
-  // Faces tied to one plane weigh in by area, as the scanned points they were fitted to
-  // would: every face has about the same number of samples (corners and edge midpoints),
-  // so a boss side zipped against a long plate side tilted the shared plane towards
-  // itself, and the plate's far corners moved further than the tolerance (bracket, scan-
-  // parts score). Each face's residuals are scaled by sqrt(its area / its group's
-  // largest), so its share of the cost is its share of the area.
+  // Faces the repair zipped together and tied to one plane weigh in by area, as the
+  // scanned points they were fitted to would: every face has about the same number of
+  // samples (corners and edge midpoints), so a boss side zipped against a long plate
+  // side tilted the shared plane towards itself, and the plate's far corners moved
+  // further than the tolerance (bracket, scan-parts score). Each face's residuals are
+  // scaled by sqrt(its area / its group's largest), so its share of the cost is its share
+  // of the area. Only groups with such a zipped pair: faces that were neighbours already
+  // keep equal weights. Only for a pinch's repair (`weigh_zipped_by_area`): weighting the
+  // faces pass 8's merge made adjacent let its refit make a sliver of a neighbour (Table
+  // 1 audit, paper1, seed 7).
   std::vector<double> w_face(faces.size(), w_data);
-  {
+  if (weigh_zipped_by_area) {
+    std::set<std::size_t> zipped_groups;
+    for (auto [i, k] : zipped_pairs) zipped_groups.insert(tie[i]);
     std::map<std::size_t, std::vector<std::size_t>> groups;
     for (std::size_t i = 0; i < faces.size(); ++i) groups[tie[i]].push_back(i);
     for (const auto& [root_index, members] : groups) {
-      if (members.size() < 2) continue;
+      if (members.size() < 2 || !zipped_groups.count(root_index)) continue;
       std::vector<double> area;
       double largest = 0;
       for (std::size_t i : members) {

@@ -55,6 +55,9 @@ struct RegionSolve {
 // and records them in `touched`. When the constraints cannot be met (or force a surface
 // further than the tolerance) b is left as it was and `why` names them; the caller rolls
 // back its transaction on any failure.
-RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol);
+// `weigh_zipped_by_area` (a pinch's repair): planes the repair zipped together and tied to
+// one weigh in by area (region_solve.cpp).
+RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
+                         bool weigh_zipped_by_area = false);
 
 }  // namespace kintsugi::detail
