@@ -230,8 +230,14 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   // tangent at the start misleads when the present curve is a gap's border, which leaves
   // the junction across the circle: the long way round then crossed the face's other
   // edges). Otherwise like the present curve at its start (the curve runs along h).
+  // Only when the present curve is a scanned one (a polyline or B-spline: a gap's joined
+  // border): an analytic present curve (a line, an arc) keeps the start-tangent rule,
+  // which the rest of the pipeline was built and audited with (with the middle rule for
+  // every curve, a chain collapsed beside a fillet's end took the long arc over other
+  // edges: Table 1 audit, grid24, seed 7).
   const double period = geo::is_closed(c) ? geo::period(c) : 0.0;
-  if (period > 0 && !std::holds_alternative<std::monostate>(old) && (p1 - p0).norm() > tol.precision) {
+  const bool scanned = std::holds_alternative<geo::Polyline>(old) || std::holds_alternative<geo::BSplineCurve>(old);
+  if (period > 0 && scanned && (p1 - p0).norm() > tol.precision) {
     // The point halfway along the present curve (a straight one: the chord's middle,
     // which projects onto the shorter arc).
     const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
