@@ -190,6 +190,17 @@ TEST(Pinch, CylinderPinchedInFourPlacesIsRefusedAndTheBodyUnchanged) {
   EXPECT_TRUE(b.equals(before, &why)) << why;
 }
 
+// A plate with a cylinder boss (radius 4) 0.1 from its front face.
+Body cylinder_almost_flush_with_the_front() {
+  const double r = 4;
+  Body b = build::box(20, 12, 4);
+  FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
+  const Vec3 centre(10, r + 0.1, 4);
+  zoo::extrude_disc(b, zoo::add_circle_face(b, top, centre, r), Vec3(0, 0, 3), r, centre);
+  b.clear_journal();
+  return b;
+}
+
 // The curved-versus-planar case on its own: the same cylinder near one side only (the
 // others far), 0.1 from the plate's front face. Closing the pinch needs a vertex on the
 // circle and on the front face, which do not meet (the cylinder misses the plane by 0.1;
@@ -199,12 +210,7 @@ TEST(Pinch, CylinderPinchedInFourPlacesIsRefusedAndTheBodyUnchanged) {
 // the run that ends with it unsolved is undone and the pinch is refused with that reason,
 // the model unchanged.
 TEST(Pinch, CylinderAlmostFlushWithOneSideIsRefusedRatherThanLeftOffItsSurfaces) {
-  const double r = 4;
-  Body b = build::box(20, 12, 4);
-  FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
-  const Vec3 centre(10, r + 0.1, 4);
-  zoo::extrude_disc(b, zoo::add_circle_face(b, top, centre, r), Vec3(0, 0, 3), r, centre);
-  b.clear_journal();
+  Body b = cylinder_almost_flush_with_the_front();
   geo::Tolerances tol = tol_for(b);
   std::vector<Problem> found = pinches(b, tol);
   ASSERT_EQ(found.size(), 1u);
@@ -224,12 +230,7 @@ TEST(Pinch, CylinderAlmostFlushWithOneSideIsRefusedRatherThanLeftOffItsSurfaces)
 // The same, with an edge split elsewhere: the run is undone and done again without the
 // pinch, and the other repair is still made.
 TEST(Pinch, AnUnsolvedRepairIsRefusedAndTheOthersAreStillMade) {
-  const double r = 4;
-  Body b = build::box(20, 12, 4);
-  FaceH top = zoo::face_facing(b, Vec3::UnitZ(), Vec3(0, 0, 4));
-  const Vec3 centre(10, r + 0.1, 4);
-  zoo::extrude_disc(b, zoo::add_circle_face(b, top, centre, r), Vec3(0, 0, 3), r, centre);
-  b.clear_journal();
+  Body b = cylinder_almost_flush_with_the_front();
   geo::Tolerances tol = tol_for(b);
   const Counts with_pinch = b.counts();
   std::string err;
