@@ -164,7 +164,11 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     if (std::holds_alternative<geo::Line>(old) && !closed && (p1 - p0).norm() > 0)
       return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
     if (f.valid() && f == g && !closed) {
-      if (auto c = seam_circle(b.surface(f)); c && std::holds_alternative<geo::Circle>(old)) {
+      // The iso-circle at u = 0, when both vertices are on it (a seam the input put
+      // elsewhere keeps its curve).
+      if (auto c = seam_circle(b.surface(f)); c && std::holds_alternative<geo::Circle>(old) &&
+                                              geo::closest_point(geo::Curve{*c}, p0).distance <= tol.precision &&
+                                              geo::closest_point(geo::Curve{*c}, p1).distance <= tol.precision) {
         // Oriented like the present seam.
         if (geo::tangent(geo::Curve{*c}, geo::parameter(geo::Curve{*c}, p0)).dot(geo::tangent(old, geo::parameter(old, p0))) < 0)
           c->frame.z = -c->frame.z;
@@ -225,16 +229,13 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     return std::nullopt;
   }
   geo::Curve c = curves[pick->index];
-  // Orientation. A closed curve (a circle) cut between two vertices has two arcs: the one
-  // the edge's present curve runs along, judged by the present curve's middle point (the
-  // tangent at the start misleads when the present curve is a gap's border, which leaves
-  // the junction across the circle: the long way round then crossed the face's other
-  // edges). Otherwise like the present curve at its start (the curve runs along h).
-  // Only when the present curve is a scanned one (a polyline or B-spline: a gap's joined
-  // border): an analytic present curve (a line, an arc) keeps the start-tangent rule,
-  // which the rest of the pipeline was built and audited with (with the middle rule for
-  // every curve, a chain collapsed beside a fillet's end took the long arc over other
-  // edges: Table 1 audit, grid24, seed 7).
+  // Orientation: like the present curve at its start (the curve runs along h), except
+  // for a closed curve (a circle) cut between two vertices when the present curve is a
+  // scanned one (a polyline or B-spline: a gap's joined border). That leaves the junction
+  // across the circle, so its start tangent can pick the long way round, over the face's
+  // other edges; the arc taken is the one the present curve's middle lies on. Analytic
+  // present curves keep the start-tangent rule (with the middle rule for them too, a chain
+  // collapsed beside a fillet's end took the long arc: Table 1 audit, grid24, seed 7).
   const double period = geo::is_closed(c) ? geo::period(c) : 0.0;
   const bool scanned = std::holds_alternative<geo::Polyline>(old) || std::holds_alternative<geo::BSplineCurve>(old);
   if (period > 0 && scanned && (p1 - p0).norm() > tol.precision) {
