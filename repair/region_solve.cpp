@@ -194,7 +194,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   // repair made adjacent, that one plane fits both faces' samples within the tolerance
   // (pass 8's refit test: two fits of one scanned plane differ by up to twice that).
   std::vector<std::size_t> tie(faces.size());
-  std::vector<std::pair<std::size_t, std::size_t>> zipped_pairs;  // tied, not adjacent before
+  std::vector<std::size_t> zipped;  // faces tied to one they were not adjacent to before
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = i;
   auto root = [&](std::size_t i) {
     while (tie[i] != i) i = tie[i] = tie[tie[i]];
@@ -210,8 +210,8 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         if (!std::holds_alternative<geo::Plane>(b.surface(g))) continue;
         const OriginalFace &oi = original.at(faces[i]), &og = original.at(g);
         bool one_plane;
-        const bool zipped = !oi.neighbours.count(g);
-        if (!zipped) {
+        const bool was_apart = !oi.neighbours.count(g);
+        if (!was_apart) {
           one_plane = geo::surface_deviation(oi.surface, og.surface, oi.samples, og.samples, tol.length) <= tol.length;
         } else {
           std::vector<geo::Vec3> both = oi.samples;
@@ -220,7 +220,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
           one_plane = fit.problem.empty() && fit.max_deviation <= tol.length;
         }
         if (one_plane) {
-          if (zipped) zipped_pairs.push_back({i, it->second});
+          if (was_apart) zipped.push_back(i);
           tie[root(it->second)] = root(i);
         }
       }
@@ -282,7 +282,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   std::vector<double> w_face(faces.size(), w_data);
   if (weigh_zipped_by_area) {
     std::set<std::size_t> zipped_groups;
-    for (auto [i, k] : zipped_pairs) zipped_groups.insert(tie[i]);
+    for (std::size_t i : zipped) zipped_groups.insert(tie[i]);
     std::map<std::size_t, std::vector<std::size_t>> groups;
     for (std::size_t i = 0; i < faces.size(); ++i) groups[tie[i]].push_back(i);
     for (const auto& [root_index, members] : groups) {
