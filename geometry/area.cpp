@@ -1,6 +1,8 @@
 #include "geometry/area.h"
 
+#include "geometry/frame.h"
 #include "geometry/parameter_domain.h"
+#include "geometry/revolution_measure.h"
 #include "geometry/surface.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -11,6 +13,7 @@
 #include <exception>
 #include <limits>
 #include <list>
+#include <optional>
 
 namespace kintsugi::geo {
 
@@ -136,6 +139,51 @@ void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step)
   cdt.insert(pts.begin(), pts.end());
 }
 
+// The bounds' share of the region's inside: the extreme points of the height along x, y
+// and z that lie in the region (revolution_measure.h; the boundary's points are added by
+// the caller). A point is tried at every 2π shift of its periodic coordinates that falls
+// in the domain's box; a circle v = const is in the region where a domain triangle
+// reaches its line, and one point of it there stands for all (the height is constant
+// along it).
+void add_extreme_points(const CDT& cdt, const Surface& s, const ParameterDomain& d, Box& bounds) {
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& poly : d.polygons)
+    for (const Vec2& p : poly) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  if (!(lo.x() <= hi.x())) return;
+  const bool periodic_v = std::holds_alternative<Torus>(s);
+  auto shifts = [](double x, double from, double to) {
+    std::vector<double> out;
+    for (double k = std::ceil((from - x) / kTwoPi); x + k * kTwoPi <= to; k += 1) out.push_back(x + k * kTwoPi);
+    return out;
+  };
+  const ExtremeCandidates c = extreme_candidates(s);
+  for (const Vec2& p : c.points)
+    for (double u : shifts(p.x(), lo.x(), hi.x()))
+      for (double v : periodic_v ? shifts(p.y(), lo.y(), hi.y()) : std::vector<double>{p.y()})
+        if (in_region(d, Vec2(u, v))) bounds.add(evaluate(s, Vec2(u, v)));
+  for (double circle : c.circles)
+    for (double v : periodic_v ? shifts(circle, lo.y(), hi.y()) : std::vector<double>{circle}) {
+      bool found = false;
+      for (CDT::Face_handle f : cdt.finite_face_handles()) {
+        if (!f->info().in_domain()) continue;
+        // The triangle's slice at v: where its sides cross the line (or touch it).
+        double umin = std::numeric_limits<double>::infinity(), umax = -umin;
+        for (int i = 0; i < 3; ++i) {
+          const K::Point_2 &a = f->vertex(i)->point(), &b = f->vertex((i + 1) % 3)->point();
+          if ((a.y() - v) * (b.y() - v) > 0) continue;
+          const double t = a.y() == b.y() ? 0.0 : (v - a.y()) / (b.y() - a.y());
+          const double u = a.x() + t * (b.x() - a.x());
+          umin = std::min(umin, u), umax = std::max(umax, u);
+        }
+        if (umin > umax) continue;
+        bounds.add(evaluate(s, Vec2(0.5 * (umin + umax), v)));
+        found = true;
+        break;
+      }
+      if (found) break;
+    }
+}
+
 }  // namespace
 
 RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec3>>& loops, const AreaOptions& o) {
@@ -187,7 +235,10 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
   // Ruled surfaces in the fast mode: whole domain triangles (no grid), bounds from the boundary.
   const Cone* cone = std::get_if<Cone>(&s);
   const bool ruled = fast && (std::holds_alternative<Plane>(s) || std::holds_alternative<Cylinder>(s) || cone);
-  if (!ruled) add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);
+  // Spheres and ring tori in the fast mode: each domain triangle's area in closed form and
+  // the bounds from the surface's extreme points (revolution_measure.h), so no grid either.
+  const bool closed_form = fast && has_exact_triangle_area(s);
+  if (!ruled && !closed_form) add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);
   mark_domains(cdt);
 
   const Rule& rule = radon7();
@@ -246,6 +297,11 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
     if (!f->info().in_domain()) continue;
     std::array<Vec2, 3> t;
     for (int i = 0; i < 3; ++i) t[i] = Vec2(f->vertex(i)->point().x(), f->vertex(i)->point().y());
+    if (closed_form)
+      if (const std::optional<double> exact = exact_triangle_area(s, t)) {
+        area += *exact;
+        continue;
+      }
     if (ruled) {
       // A cone's triangle reaching across the apex has |area element| kinked inside it:
       // split as usual there.
@@ -291,6 +347,7 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
     const double slack = 1e-9 * (hi - lo + std::abs(apex) + 1);
     if (lo <= apex + slack && hi >= apex - slack) out.bounds.add(evaluate(s, Vec2(0.0, apex)));
   }
+  if (closed_form) add_extreme_points(cdt, s, domain, out.bounds);
   for (const Vec3& v : out.mesh.vertices) out.bounds.add(v);
   for (const auto& loop : loops)
     for (const Vec3& p : loop) out.bounds.add(p);

@@ -1,6 +1,7 @@
 #include "geometry/area.h"
 
 #include "geometry/frame.h"
+#include "geometry/revolution_measure.h"
 #include "geometry/surface.h"
 #include "generators.h"
 
@@ -256,6 +257,106 @@ TEST(Area, AreaAndBoundsOnlyReachesTheConeApex) {
   // The apex lies below the boundary circle: the bounds reach it.
   const Vec3 apex = evaluate(k, Vec2(0, apex_parameter(k)));
   EXPECT_NEAR(cap.bounds.min.z(), apex.z(), 1e-12);
+}
+
+// The closed-form triangle area on spheres and ring tori against the 7-point rule on a
+// fine regular split of the same triangle (the quadrature the fast measure used).
+RC_GTEST_PROP(AreaProperty, ClosedFormTriangleAreaAgreesWithQuadrature, ()) {
+  const Surface s = testing::gen_surface(*rc::gen::inRange(3, 5));
+  const double lim = std::holds_alternative<Sphere>(s) ? kPi / 2 : 4.0;
+  std::array<Vec2, 3> t;
+  for (Vec2& p : t) p = Vec2(gen_real(-4.0, 4.0), gen_real(-lim, lim));
+  // Thin triangles too: two vertices at one latitude, or nearly.
+  if (*rc::gen::inRange(0, 3) == 0) t[1].y() = t[0].y() + gen_real(0.0, 1e-7);
+  const std::optional<double> exact = exact_triangle_area(s, t);
+  RC_ASSERT(exact.has_value());
+  // Reference: n×n pieces, 7 points each, through area_element.
+  const int n = 64;
+  const double w[7] = {9.0 / 40, (155 - std::sqrt(15.0)) / 1200, (155 - std::sqrt(15.0)) / 1200,
+                       (155 - std::sqrt(15.0)) / 1200, (155 + std::sqrt(15.0)) / 1200,
+                       (155 + std::sqrt(15.0)) / 1200, (155 + std::sqrt(15.0)) / 1200};
+  const double a1 = (6 - std::sqrt(15.0)) / 21, b1 = (9 + 2 * std::sqrt(15.0)) / 21;
+  const double a2 = (6 + std::sqrt(15.0)) / 21, b2 = (9 - 2 * std::sqrt(15.0)) / 21;
+  const double bary[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {a1, a1, b1}, {a1, b1, a1}, {b1, a1, a1},
+                             {a2, a2, b2}, {a2, b2, a2}, {b2, a2, a2}};
+  auto grid = [&](int i, int j) { return t[0] + (double(i) / n) * (t[1] - t[0]) + (double(j) / n) * (t[2] - t[0]); };
+  double ref = 0.0;
+  auto piece = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const double jac = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    for (int q = 0; q < 7; ++q) ref += w[q] * jac * area_element(s, bary[q][0] * a + bary[q][1] * b + bary[q][2] * c);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n - i; ++j) {
+      piece(grid(i, j), grid(i + 1, j), grid(i, j + 1));
+      if (j + 1 < n - i) piece(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1));
+    }
+  RC_ASSERT(std::abs(*exact - ref) <= 1e-10 * (1 + ref));
+}
+
+TEST(Area, ClosedFormRefusesWhereTheAreaElementFolds) {
+  const Sphere k{Frame{}, 2.0};
+  EXPECT_FALSE(exact_triangle_area(k, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1.7)}).has_value());  // beyond the pole
+  const Torus spindle{Frame{}, 1.0, 1.5};
+  EXPECT_FALSE(exact_triangle_area(spindle, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}).has_value());
+  EXPECT_FALSE(exact_triangle_area(Cylinder{Frame{}, 1.0}, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}).has_value());
+  // A whole sphere's parameter rectangle as two triangles: 4πr².
+  const double a = *exact_triangle_area(k, {Vec2(0, -kPi / 2), Vec2(kTwoPi, -kPi / 2), Vec2(kTwoPi, kPi / 2)}) +
+                   *exact_triangle_area(k, {Vec2(0, -kPi / 2), Vec2(kTwoPi, kPi / 2), Vec2(0, kPi / 2)});
+  EXPECT_NEAR(a, 16 * kPi, 1e-12);
+}
+
+// The fast measure's bounds on spheres and tori hold the region: every point of a dense
+// sample of a random patch is inside them, and each side of the box is reached by a
+// sample to within the sample's spacing. The patches are rectangles in (u, v), bands all
+// the way round and sphere caps, in random frames and in frames whose axis is a
+// coordinate axis (where the height is extreme along a torus's whole top circle, or at a
+// pole). A band or cap holds such a circle or pole inside with no boundary point on it.
+RC_GTEST_PROP(AreaProperty, FastBoundsOfSpheresAndToriAreTheRegionsBox, ()) {
+  Surface s = testing::gen_surface(*rc::gen::inRange(3, 5));
+  if (*rc::gen::inRange(0, 2) == 0)
+    std::visit([](auto& x) {
+      if constexpr (requires { x.frame; }) x.frame = Frame{x.frame.origin, Vec3::UnitX(), Vec3::UnitZ()};
+    }, s);
+  const bool sphere = std::holds_alternative<Sphere>(s);
+  const int shape = *rc::gen::inRange(0, 3);  // rectangle, band, cap (a band on a torus)
+  const bool round = shape > 0;
+  double u0 = gen_real(-3.0, 3.0), du = round ? kTwoPi : gen_real(0.2, 6.0);
+  double v0 = sphere ? gen_real(-1.5, 1.0) : gen_real(-3.0, 3.0);
+  double dv = sphere ? gen_real(0.05, kPi / 2 - 0.02 - v0) : gen_real(0.2, 6.0);
+  const int sides = 256;
+  std::vector<std::vector<Vec3>> loops;
+  if (!round) {
+    loops.push_back(rectangle(s, u0, u0 + du, v0, v0 + dv, sides));
+  } else if (shape == 2 && sphere) {
+    u0 = 0, dv = kPi / 2 - v0;  // the cap north of v0, the pole inside
+    loops.push_back(parallel(s, v0, 1, 4 * sides));
+  } else {
+    // A torus band between two parallels: two regions have them as boundary, and which
+    // one the domain takes depends on where the parallels' v fall in (-π, π] (a band
+    // reaching ±π came out as the other one): keep it inside.
+    u0 = 0, v0 = std::clamp(v0, -2.8, 2.0), dv = std::min(dv, 2.8 - v0);
+    loops.push_back(parallel(s, v0, 1, 4 * sides));
+    loops.push_back(parallel(s, v0 + dv, -1, 4 * sides));
+  }
+  RC_PRE(dv > 0.05);
+  AreaOptions fast;
+  fast.area_and_bounds_only = true;
+  const RegionMeasure m = measure_region(s, loops, fast);
+  RC_ASSERT(m.ok());
+  Box dense;
+  const int n = 300;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) dense.add(evaluate(s, Vec2(u0 + du * i / n, v0 + dv * j / n)));
+  const double size = dense.diagonal();
+  // A side's extreme lies within half a spacing of a sample: off by at most r·(step/2)²/2
+  // (radii are at most 3, a torus's R + r at most 6: generators.h). The region is the
+  // inside of the boundary's chords, which cut inside the true sides by the same rule.
+  const double spacing = std::max(du, dv) / n * 6.0, chord = std::max(du, dv) / sides * 6.0;
+  const double slack = 1e-12 * size + spacing * spacing, inside = 1e-12 * size + chord * chord;
+  RC_ASSERT((m.bounds.min - dense.min).maxCoeff() <= inside);
+  RC_ASSERT((dense.max - m.bounds.max).maxCoeff() <= inside);
+  RC_ASSERT((dense.min - m.bounds.min).maxCoeff() <= slack);
+  RC_ASSERT((m.bounds.max - dense.max).maxCoeff() <= slack);
 }
 
 }  // namespace
