@@ -55,7 +55,7 @@ nlohmann::json beautify_timed(Model& m, std::optional<double> tol, const Beautif
     // The validity gate also asks OpenCASCADE about every repaired region: the model must
     // still convert, and BRepCheck must pass on each repaired face that passed it on the
     // input (or is new).
-    io::register_occt_region_check(m.body);
+    io::register_occt_region_check(m.body, choice.tol.precision);
     // Registered for this beautify only: the next caller in this process (the Python
     // package, batch) registers its own input's verdict.
     struct Unregister {

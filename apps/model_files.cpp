@@ -4,6 +4,8 @@
 #include "apps/bounded_read.h"
 #ifdef KINTSUGI_HAVE_OCCT
 #include "geometry/occt/freeform_occt.h"
+#include "geometry/tolerance.h"
+#include "invariants/element_geometry.h"
 #endif
 
 #include <algorithm>
@@ -92,7 +94,12 @@ bool save_model(const Model& m, const std::string& path, const std::string& inpu
   // Export to a temporary file beside the target, then rename: never a partial output.
   std::filesystem::path target(path);
   std::filesystem::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + target.extension().string());
-  if (!io::export_cad(m.body, tmp.string(), cad_format(*fmt), error, m.units)) {
+  // The shape's tolerances are the model's modelling precision when its tolerance is known
+  // (beautify records it in meta): the precision the model is consistent to.
+  double precision = 0;
+  if (auto t = m.meta.find("tolerance"); t != m.meta.end() && t->is_number() && t->get<double>() > 0)
+    precision = geo::Tolerances::for_model(t->get<double>(), model_size(m.body)).precision;
+  if (!io::export_cad(m.body, tmp.string(), cad_format(*fmt), error, m.units, precision)) {
     std::filesystem::remove(tmp, ec);
     return false;
   }

@@ -46,7 +46,7 @@ CheckOutcome check_body(const Body& b, const geo::Tolerances& tol, [[maybe_unuse
   c.valid = c.violations.empty();
 #ifdef KINTSUGI_HAVE_OCCT
   if (with_occt) {
-    io::OcctVerdict v = io::occt_check(b);
+    io::OcctVerdict v = io::occt_check(b, tol.precision);
     c.occt = {{"valid", v.valid}, {"problems", v.problems}};
   }
 #endif

@@ -68,10 +68,10 @@ nlohmann::ordered_json ours(const std::string& step, double tolerance) {
   j["read_seconds"] = seconds_since(t0);
   j["before"] = body_counts(in->body);
   t0 = clock::now();
-  io::register_occt_region_check(in->body);
+  const geo::Tolerances tol = geo::Tolerances::for_model(tolerance, model_size(in->body));
+  io::register_occt_region_check(in->body, tol.precision);
   BeautifyOptions o;
   o.check_topology_each_repair = false;
-  const geo::Tolerances tol = geo::Tolerances::for_model(tolerance, model_size(in->body));
   const BeautifyReport r = beautify(in->body, tol, o);
   const bool valid = check_topology(in->body).empty();
   j["heal_seconds"] = seconds_since(t0);

@@ -72,10 +72,12 @@ struct BuiltShape {
 // with a face or edge without geometry, or geometry OpenCASCADE rejects.
 // With `only`, just those faces and their edges, as a compound of faces (no shells);
 // with `loops` as well, a face that has an entry there is made with those loops alone
-// (and only their edges are made).
+// (and only their edges are made). Vertices, edges and faces get the tolerance
+// `precision` (the model's modelling precision, geo::Tolerances::precision), or
+// OpenCASCADE's default 1e-7 when that is larger or none is given.
 using LoopSubsets = std::map<FaceH, std::vector<LoopH>>;
 std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only = nullptr,
-                                   const LoopSubsets* loops = nullptr);
+                                   const LoopSubsets* loops = nullptr, double precision = 0);
 
 // Names a face for messages ("face #12 (STEP entity #345)"); given the face's 1-based
 // index in the shape's face map.

@@ -419,12 +419,13 @@ std::optional<CadImport> import_cad(const std::string& path, CadFormat f, std::s
   return std::nullopt;
 }
 
-bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string* error, const std::string& units) {
+bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string* error, const std::string& units,
+                double precision) {
   silence_occt();
   geo::occt::register_freeform_backend();
   try {
     std::string why;
-    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why);
+    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, nullptr, nullptr, precision);
     if (!s) return fail(error, path + ": cannot convert the body: " + why);
     if (f == CadFormat::step) return write_step(s->shape, path, units, error);
     if (f == CadFormat::iges) return write_iges(s->shape, path, units, error);
@@ -439,13 +440,13 @@ bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string
   }
 }
 
-OcctVerdict occt_check(const Body& b) {
+OcctVerdict occt_check(const Body& b, double precision) {
   silence_occt();
   geo::occt::register_freeform_backend();
   OcctVerdict v{false, {}};
   try {
     std::string why;
-    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why);
+    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, nullptr, nullptr, precision);
     if (!s) {
       v.problems.push_back("cannot convert the body: " + why);
       return v;
@@ -504,6 +505,7 @@ namespace {
 struct RegionCheckInput {
   std::shared_ptr<const Body> body;
   std::unordered_map<std::uint32_t, bool> face_valid;
+  double precision = 0;
 };
 RegionCheckInput g_input;
 
@@ -513,7 +515,7 @@ bool face_passes_brepcheck(const Body& b, FaceH f, const geo::Box* near = nullpt
   occt::LoopSubsets loops;
   if (near) loops[f] = loops_near(b, f, *near);
   std::string why;
-  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one, &loops);
+  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one, &loops, g_input.precision);
   return s && BRepCheck_Analyzer(s->face[f.idx()]).IsValid() == Standard_True;
 }
 
@@ -549,7 +551,7 @@ std::string occt_region_check(const Body& b, const Region& r) {
     std::string why;
     occt::LoopSubsets loops;
     for (const auto& [f, near] : r.near) loops[f] = near.loops;
-    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces, &loops);
+    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces, &loops, g_input.precision);
     if (!s) return "the model could not be written: " + why;
     for (FaceH f : r.faces) {
       BRepCheck_Analyzer ana(s->face[f.idx()]);
@@ -574,9 +576,10 @@ std::string occt_region_check(const Body& b, const Region& r) {
 
 }  // namespace
 
-void register_occt_region_check(const Body& input) {
+void register_occt_region_check(const Body& input, double precision) {
   g_input.body = std::make_shared<const Body>(input);
   g_input.face_valid.clear();
+  g_input.precision = precision;
   set_external_region_check(&occt_region_check);
 }
 

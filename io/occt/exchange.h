@@ -33,18 +33,21 @@ std::optional<CadImport> import_cad(const std::string& path, CadFormat f, std::s
 
 // Writes the body: a solid per closed shell, a shell per open one (a compound when
 // there are several). Coordinates are written as they are, declared in `units` ("mm",
-// "cm", "m", "in", "ft", "um", ...). Returns false and sets *error on failure.
+// "cm", "m", "in", "ft", "um", ...). Vertex, edge and face tolerances are `precision`
+// (the model's modelling precision), at least OpenCASCADE's default 1e-7. Returns false
+// and sets *error on failure.
 bool export_cad(const Body& b, const std::string& path, CadFormat f, std::string* error,
-                const std::string& units = "mm");
+                const std::string& units = "mm", double precision = 0);
 
 struct OcctVerdict {
   bool valid;
   std::vector<std::string> problems;  // BRepCheck statuses, each with the sub-shape ("face f3: ...")
 };
 // Converts the body to a TopoDS_Shape exactly as export_cad does and runs
-// BRepCheck_Analyzer on it. A body that cannot be converted is not valid; the problems
-// then say why.
-OcctVerdict occt_check(const Body& b);
+// BRepCheck_Analyzer on it, with the tolerances set to `precision` (the modelling
+// precision our own check uses, so that both hold the model to one standard). A body
+// that cannot be converted is not valid; the problems then say why.
+OcctVerdict occt_check(const Body& b, double precision = 0);
 
 // The validity gate's OpenCASCADE half (invariants/region_validity.h): registers a check
 // that the region's faces convert (the model can still be written) and that
@@ -54,6 +57,7 @@ OcctVerdict occt_check(const Body& b);
 // taken face by face, only for faces a repair touched and only when the repaired face
 // fails: a whole-model BRepCheck (quadratic in the edges of a shell: 30 s at 10,000
 // faces) is never needed, and a bad face far away does not turn the check off elsewhere.
-void register_occt_region_check(const Body& input);
+// `precision` is the run's modelling precision (the shapes' tolerances, as occt_check).
+void register_occt_region_check(const Body& input, double precision);
 
 }  // namespace kintsugi::io

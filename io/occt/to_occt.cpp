@@ -225,8 +225,8 @@ std::string status_of(BRepBuilderAPI_EdgeError e) {
 
 class Builder {
  public:
-  explicit Builder(const Body& b, const std::set<FaceH>* only = nullptr, const LoopSubsets* loops = nullptr)
-      : b_(b), only_(only), loops_(loops) {}
+  Builder(const Body& b, const std::set<FaceH>* only, const LoopSubsets* loops, double precision)
+      : b_(b), only_(only), loops_(loops), tol_(std::max(kTol, precision)) {}
 
   std::optional<BuiltShape> run(std::string* error) {
     if (only_) return run_faces(error);
@@ -248,7 +248,7 @@ class Builder {
  private:
   void make_vertex(VertexH v) {
     TopoDS_Vertex tv;
-    bb_.MakeVertex(tv, pnt(b_.point(v)), kTol);
+    bb_.MakeVertex(tv, pnt(b_.point(v)), tol_);
     out_.vertex[v.idx()] = tv;
   }
 
@@ -263,13 +263,14 @@ class Builder {
     // so a body whose geometry is slightly off is still written with its topology.
     double d0 = c->curve->Value(c->t0).Distance(pnt(b_.point(v0)));
     double d1 = c->curve->Value(c->t1).Distance(pnt(b_.point(v1)));
-    if (d0 > kTol) bb_.UpdateVertex(tv0, std::max(BRep_Tool::Tolerance(tv0), 1.001 * d0));
-    if (d1 > kTol) bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), 1.001 * d1));
+    if (d0 > tol_) bb_.UpdateVertex(tv0, std::max(BRep_Tool::Tolerance(tv0), 1.001 * d0));
+    if (d1 > tol_) bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), 1.001 * d1));
     BRepBuilderAPI_MakeEdge me(c->curve, tv0, tv1, c->t0, c->t1);
     if (!me.IsDone()) return *error = "edge " + e.str() + ": OpenCASCADE refused it: " + status_of(me.Error()), false;
     TopoDS_Edge te = me.Edge();
+    if (tol_ > kTol) bb_.UpdateEdge(te, tol_);
     // A polyline stands for a curve it is within `chordal_error` of: that is its tolerance.
-    if (const auto* pl = std::get_if<geo::Polyline>(&b_.curve(e)); pl && pl->chordal_error > kTol) {
+    if (const auto* pl = std::get_if<geo::Polyline>(&b_.curve(e)); pl && pl->chordal_error > tol_) {
       bb_.UpdateEdge(te, pl->chordal_error);
       bb_.UpdateVertex(tv0, std::max(BRep_Tool::Tolerance(tv0), pl->chordal_error));
       bb_.UpdateVertex(tv1, std::max(BRep_Tool::Tolerance(tv1), pl->chordal_error));
@@ -520,7 +521,7 @@ class Builder {
         gs = new Geom_SphericalSurface(gp_Ax3(pnt(sp->frame.origin), dir(sp->frame.z), dir(*x)), sp->radius);
     bool sense = b_.same_sense(f);
     TopoDS_Face tf;
-    bb_.MakeFace(tf, gs, kTol);
+    bb_.MakeFace(tf, gs, tol_);
     std::vector<std::pair<LoopH, TopoDS_Wire>> wires;
     for (LoopH l : loops_of(f)) {
       if (b_.is_lone(l)) {
@@ -533,7 +534,7 @@ class Builder {
     }
     // pcurves (and pole edges) per wire, in the context of the face without any wire.
     for (auto& [l, w] : wires) {
-      ShapeFix_Wire fix(w, tf, kTol);
+      ShapeFix_Wire fix(w, tf, tol_);
       fix.ModifyTopologyMode() = Standard_False;
       fix.FixReorderMode() = 0;
       fix.FixSmallMode() = 0;
@@ -544,7 +545,7 @@ class Builder {
       fix.FixGaps2dMode() = 0;
       fix.FixNotchedEdgesMode() = 0;
       fix.FixTailMode() = 0;
-      // Tolerances stay as built (1e-7): SameParameter would widen an edge's tolerance
+      // Tolerances stay as built (the precision): SameParameter would widen an edge's tolerance
       // to cover a curve that misses its surface, and hide from BRepCheck exactly the
       // inconsistency occt_check is there to find.
       fix.FixSameParameterMode() = 0;
@@ -637,6 +638,10 @@ class Builder {
 
   const std::set<FaceH>* only_ = nullptr;
   const LoopSubsets* loops_ = nullptr;
+  // Vertex, edge and face tolerances: the model's modelling precision, so that
+  // BRepCheck holds the shape to the standard our own check does (never below
+  // OpenCASCADE's default).
+  double tol_ = kTol;
   BRep_Builder bb_;
   BuiltShape out_;
 };
@@ -644,12 +649,12 @@ class Builder {
 }  // namespace
 
 std::optional<BuiltShape> to_shape(const Body& b, std::string* error, const std::set<FaceH>* only,
-                                   const LoopSubsets* loops) {
+                                   const LoopSubsets* loops, double precision) {
   geo::occt::register_freeform_backend();  // as in from_shape
   std::string local;
   if (!error) error = &local;
   try {
-    return Builder(b, only, loops).run(error);
+    return Builder(b, only, loops, precision).run(error);
   } catch (const Standard_Failure& e) {
     *error = std::string("OpenCASCADE failed while building the shape: ") + e.GetMessageString();
   } catch (const std::exception& e) {

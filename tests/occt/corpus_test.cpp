@@ -112,14 +112,14 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
   auto tc = clock_type::now();
   const bool ours_before = check_geometry(b, tol.precision).violations.empty() &&
                            region_violations(b, whole_body(b), tol, tol.precision).empty();
-  const bool occt_before = io::occt_check(b).valid;
+  const bool occt_before = io::occt_check(b, tol.precision).valid;
   EXPECT_LT(since(tc), kMaxSeconds);
   auto td = clock_type::now();
   Detection d = detect(b, tol);
   EXPECT_LT(since(td), kMaxSeconds);
   row.problems = int(d.problems.size());
 
-  io::register_occt_region_check(b);
+  io::register_occt_region_check(b, tol.precision);
   auto tb = clock_type::now();
   BeautifyOptions opt;
   opt.check_topology_each_repair = false;
@@ -136,7 +136,7 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
     EXPECT_TRUE(check_geometry(b, tol.precision).violations.empty()) << row.part;
   }
   if (occt_before) {
-    io::OcctVerdict v = io::occt_check(b);
+    io::OcctVerdict v = io::occt_check(b, tol.precision);
     EXPECT_TRUE(v.valid) << row.part << ": " << (v.problems.empty() ? "" : v.problems.front());
   }
   if (r.repaired() == 0) {

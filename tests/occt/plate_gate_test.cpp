@@ -139,7 +139,7 @@ TEST(PlateGate, OpenCascadeChecksTheLoopsNearTheChange) {
     g.near[plate] = {box, loops_near(body, plate, box)};
     return g;
   };
-  io::register_occt_region_check(original);
+  io::register_occt_region_check(original, tol.precision);
   ExternalRegionCheck occt = external_region_check();
   ASSERT_NE(occt, nullptr);
   EXPECT_EQ(occt(b, region_of(b)), "");
@@ -163,7 +163,7 @@ TEST(PlateGate, RepairsOnThePlatePassTheGate) {
   }
   ASSERT_GE(injected, 6);
   const geo::Tolerances tol = geo::Tolerances::for_model(clean.tolerance, model_size(b));
-  io::register_occt_region_check(b);
+  io::register_occt_region_check(b, tol.precision);
   BeautifyReport r = beautify(b, tol);
   set_external_region_check(nullptr);
   EXPECT_EQ(r.not_repaired(), 0);
@@ -171,7 +171,7 @@ TEST(PlateGate, RepairsOnThePlatePassTheGate) {
   EXPECT_TRUE(check_topology(b).empty());
   auto ours = region_violations(b, whole_body(b), tol, tol.precision);
   EXPECT_TRUE(ours.empty()) << ours.front().invariant << ": " << ours.front().detail;
-  io::OcctVerdict theirs = io::occt_check(b);
+  io::OcctVerdict theirs = io::occt_check(b, tol.precision);
   EXPECT_TRUE(theirs.valid) << (theirs.problems.empty() ? "" : theirs.problems.front());
 }
 

@@ -32,8 +32,8 @@ void beautify_is_valid_or_unchanged(const std::string& path, io::CadFormat forma
   // screw.step's exact curves lie up to 7e-5 off its surfaces (the file's tolerances,
   // which our bodies do not carry), so OpenCASCADE calls it invalid as we read it: then
   // beautify must leave it as read, or make it valid.
-  const bool occt_before = io::occt_check(b).valid;
-  io::register_occt_region_check(b);
+  const bool occt_before = io::occt_check(b, tol.precision).valid;
+  io::register_occt_region_check(b, tol.precision);
   BeautifyReport r = beautify(b, tol);
   set_external_region_check(nullptr);
 
@@ -45,7 +45,7 @@ void beautify_is_valid_or_unchanged(const std::string& path, io::CadFormat forma
   auto ours = region_violations(b, whole_body(b), tol, lies_on_limit(tol, check_geometry(original, tol.precision).max_deviation));
   EXPECT_TRUE(ours.empty()) << ours.front().invariant << ": " << ours.front().detail;
   if (occt_before || r.repaired() > 0) {
-    io::OcctVerdict theirs = io::occt_check(b);
+    io::OcctVerdict theirs = io::occt_check(b, tol.precision);
     EXPECT_TRUE(theirs.valid) << (theirs.problems.empty() ? "" : theirs.problems.front());
   }
   Body back = test::round_trip(b, format, "sample_" + std::filesystem::path(path).filename().string());

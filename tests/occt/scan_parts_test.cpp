@@ -224,12 +224,13 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   opt.check_topology_each_repair = false;
   // KINTSUGI_SCAN_OCCT_GATE=1: with the OpenCASCADE half of the validity gate, as the CLI
   // runs it (io::register_occt_region_check), to see what it refuses.
-  if (std::getenv("KINTSUGI_SCAN_OCCT_GATE")) io::register_occt_region_check(out);
-  BeautifyReport rep = beautify(out, geo::Tolerances::for_model(t, model_size(out)), opt);
+  const geo::Tolerances run_tol = geo::Tolerances::for_model(t, model_size(out));
+  if (std::getenv("KINTSUGI_SCAN_OCCT_GATE")) io::register_occt_region_check(out, run_tol.precision);
+  BeautifyReport rep = beautify(out, run_tol, opt);
   set_external_region_check(nullptr);
   const std::string left = describe_left(rep);
   if (std::getenv("KINTSUGI_SCAN_KEEP")) {
-    io::export_cad(out, path + ".out.step", io::CadFormat::step, &err);
+    io::export_cad(out, path + ".out.step", io::CadFormat::step, &err, "mm", run_tol.precision);
     std::printf("case files: %s and %s.out.step\n", path.c_str(), path.c_str());
     io::OcctVerdict iv = io::occt_check(b);
     std::printf("  injected model: BRepCheck %s %s\n", iv.valid ? "valid" : "invalid",
@@ -238,7 +239,7 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
       std::printf("  %s %s %s%s%s\n", problem_name(e.problem.type), outcome_name(e.outcome), e.reason.c_str(),
                   e.note.empty() ? "" : " | note: ", e.note.c_str());
     for (const std::string& o : zoo::geometry_offences(out, 1e-6 * t)) std::printf("  offence: %s\n", o.c_str());
-    io::OcctVerdict ov = io::occt_check(out);
+    io::OcctVerdict ov = io::occt_check(out, run_tol.precision);
     for (const std::string& o : ov.problems) std::printf("  BRepCheck: %s\n", o.c_str());
   }
 
@@ -251,7 +252,7 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   std::vector<Violation> vs = check_topology(out);
   if (!vs.empty()) return judged(Verdict::invalid, to_string(vs[0]));
   if (c.shells != 1 || c.border_cycles != 0) return judged(Verdict::invalid, "not one closed shell: " + str(c));
-  if (io::OcctVerdict ov = io::occt_check(out); !ov.valid)
+  if (io::OcctVerdict ov = io::occt_check(out, run_tol.precision); !ov.valid)
     return judged(Verdict::invalid, "BRepCheck: " + (ov.problems.empty() ? std::string() : ov.problems[0]));
   if (!(c == want)) return judged(Verdict::counts, str(c) + " want " + str(want));
 
