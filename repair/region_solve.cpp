@@ -18,6 +18,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -400,12 +401,10 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   for (std::size_t i = 0; i < faces.size(); ++i) out.moved.push_back({faces[i], o.moved[i]});
   if (!o.unmet.empty()) {
     // The constraints that cannot be met together: those whose removal alone lets the
-    // rest be met (dropping one at a time), when there are few enough to try. Each try
-    // is a whole solve, and a repair left unsolved is tried again in later rounds: with
-    // up to 24 tries, diagnosing four unsolved merges took 22 of CrankArm.brep's 38 s.
+    // rest be met (dropping one at a time), when there are few enough to try.
     std::sort(o.unmet.begin(), o.unmet.end(), [](const auto& a, const auto& c) { return a.first > c.first; });
     std::vector<std::size_t> conflict;
-    constexpr std::size_t kMaxDropOne = 4;
+    constexpr std::size_t kMaxDropOne = 24;
     if (o.unmet.size() <= kMaxDropOne)
       for (auto [r, k] : o.unmet)
         if (Outcome without = run(k); without.unmet.empty()) conflict.push_back(k);
