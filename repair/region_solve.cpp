@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <type_traits>
 #include <set>
@@ -108,6 +109,55 @@ double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   double m = 0.0;
   for (const auto& q : pts) m = std::max(m, std::abs(geo::signed_distance(s, q)));
   return m;
+}
+
+// Everything a solve reads, for the memo below: the solved faces (by handle, with their
+// surfaces, ties and weights, and the samples from before the repair), the vertices (by
+// handle, with their points), the constraints and the fixed surfaces they name, the
+// tolerances.
+struct SolveInput {
+  double length = 0, precision = 0;
+  std::vector<std::uint32_t> faces, vertices;
+  std::vector<std::size_t> tie;
+  std::vector<double> w_face;
+  std::vector<geo::Surface> surfaces, fixed;
+  std::vector<std::vector<geo::Vec3>> samples;
+  std::vector<geo::Vec3> points;
+  std::vector<std::pair<std::size_t, std::uint32_t>> constraints;
+  std::uint64_t hash = 0;
+  bool operator==(const SolveInput& o) const {
+    return hash == o.hash && length == o.length && precision == o.precision && faces == o.faces &&
+           vertices == o.vertices && tie == o.tie && w_face == o.w_face && constraints == o.constraints &&
+           points == o.points && samples == o.samples && surfaces == o.surfaces && fixed == o.fixed;
+  }
+};
+
+// Solves that failed, by their input. A failed solve leaves the body as it was, and the
+// pipeline meets the same failing problem again unchanged: in each later round, and in
+// each rerun after an unsolved repair was vetoed (beautify.cpp), where the whole run is
+// replayed from the start. Each failure costs a full solve plus up to 24 more naming the
+// conflicting constraints; on CrankArm.brep (four merges that cannot be solved) that was
+// 35 of beautify's 38 s. The solve is a function of its input, so a repeat is answered
+// from here. Per thread, the last few only.
+struct FailedSolves {
+  static constexpr std::size_t kKept = 32;
+  std::vector<std::pair<SolveInput, RegionSolve>> entries;  // oldest first
+  const RegionSolve* find(const SolveInput& in) const {
+    for (const auto& [key, result] : entries)
+      if (key == in) return &result;
+    return nullptr;
+  }
+  void add(SolveInput in, const RegionSolve& r) {
+    if (entries.size() == kKept) entries.erase(entries.begin());
+    entries.emplace_back(std::move(in), r);
+  }
+};
+thread_local FailedSolves g_failed_solves;
+
+std::uint64_t mix(std::uint64_t h, double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return (h ^ bits) * 1099511628211ull;
 }
 
 RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
@@ -395,6 +445,30 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   };
   auto name = [&](std::size_t k) { return vlist[constraints[k].vertex].str() + " on " + constraints[k].face.str(); };
 
+  SolveInput input;
+  input.length = tol.length, input.precision = tol.precision;
+  input.tie = tie, input.w_face = w_face;
+  std::uint64_t h = mix(mix(14695981039346656037ull, tol.length), tol.precision);
+  for (FaceH f : faces) {
+    input.faces.push_back(f.idx()), input.surfaces.push_back(b.surface(f));
+    input.samples.push_back(original.at(f).samples);
+    for (const geo::Vec3& q : input.samples.back()) h = mix(mix(mix(h, q.x()), q.y()), q.z());
+  }
+  for (VertexH v : vlist) {
+    input.vertices.push_back(v.idx()), input.points.push_back(b.point(v));
+    h = mix(mix(mix(mix(h, double(v.idx())), b.point(v).x()), b.point(v).y()), b.point(v).z());
+  }
+  for (const Constraint& c : constraints) {
+    input.constraints.emplace_back(c.vertex, c.face.idx());
+    if (!face_index.count(c.face)) input.fixed.push_back(b.surface(c.face));
+  }
+  input.hash = h;
+  if (const RegionSolve* seen = g_failed_solves.find(input)) return *seen;
+  auto failed = [&](const RegionSolve& r) {
+    g_failed_solves.add(std::move(input), r);
+    return r;
+  };
+
   Outcome o = run(constraints.size());
   out.solved = true;
   out.max_residual = o.max_residual;
@@ -417,13 +491,13 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         out.why += (i ? ", " : " ") + name(o.unmet[i].second) + " (off " + fmt(o.unmet[i].first) + ")";
       if (o.unmet.size() > 8) out.why += " and " + std::to_string(o.unmet.size() - 8) + " more";
     }
-    return out;
+    return failed(out);
   }
   if (!o.vertices_too_far.empty()) {
     out.why = "the new topology forces vertices further than the tolerance " + fmt(tol.length) + ":";
     for (std::size_t i = 0; i < o.vertices_too_far.size() && i < 8; ++i)
       out.why += (i ? ", " : " ") + vlist[o.vertices_too_far[i].second].str() + " by " + fmt(o.vertices_too_far[i].first);
-    return out;
+    return failed(out);
   }
   if (o.too_far) {
     out.why = "the new topology forces surfaces further than the tolerance " + fmt(tol.length) +
@@ -434,7 +508,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         out.why += (first ? " " : ", ") + faces[i].str() + " by " + fmt(o.moved[i]);
         first = false;
       }
-    return out;
+    return failed(out);
   }
   const std::vector<geo::Surface>& solved = o.surfaces;
   auto point_after = [&](std::size_t i) { return o.points[i]; };

@@ -226,6 +226,36 @@ TEST(BeautifySolve, FourPinnedCornersNotOnOnePlaneAreNamed) {
   EXPECT_TRUE(s.b.equals(before, &why)) << why;
 }
 
+// A failed solve is remembered (region_solve.cpp, FailedSolves): the pipeline meets the
+// same failing problem again in later rounds and reruns. The memo must answer only the
+// same input: the second quad below has the same elements under the same names, with its
+// corners on one plane, and must be solved, not refused from memory.
+TEST(BeautifySolve, AFailedSolveIsRememberedForItsInputOnly) {
+  geo::Tolerances tol{0.01, 1e-8};
+  PinnedQuad bad = pinned_quad({0.0, 2e-4, 0.0, -1e-4});
+  Touched t;
+  t.faces.insert(bad.quad);
+  const detail::RegionSolve first = detail::solve_region(bad.b, t, bad.original, tol);
+  ASSERT_FALSE(first.why.empty());
+  const detail::RegionSolve again = detail::solve_region(bad.b, t, bad.original, tol);
+  EXPECT_EQ(again.why, first.why);
+  EXPECT_EQ(again.max_residual, first.max_residual);
+
+  PinnedQuad good = pinned_quad({1e-4, 2e-4, 3e-4, 2e-4});
+  ASSERT_EQ(good.quad, bad.quad);
+  ASSERT_EQ(good.corners, bad.corners);
+  Touched u;
+  u.faces.insert(good.quad);
+  const detail::RegionSolve r = detail::solve_region(good.b, u, good.original, tol);
+  EXPECT_TRUE(r.why.empty()) << r.why;
+  // And with another tolerance the same quad is a new input too (solved afresh, and
+  // met: the lifts are within a tolerance of 1).
+  Touched w;
+  w.faces.insert(bad.quad);
+  const detail::RegionSolve loose = detail::solve_region(bad.b, w, bad.original, geo::Tolerances{1.0, 1e-3});
+  EXPECT_TRUE(loose.why.empty()) << loose.why;
+}
+
 TEST(BeautifySolve, FourPinnedCornersOnOnePlaneAreMet) {
   geo::Tolerances tol{0.01, 1e-8};
   PinnedQuad s = pinned_quad({1e-4, 2e-4, 3e-4, 2e-4});  // a tilted plane through all four
