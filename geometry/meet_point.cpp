@@ -1,6 +1,7 @@
 #include "geometry/meet_point.h"
 
 #include "geometry/surface.h"
+#include "geometry/solver_log.h"
 #include "geometry/surface_params.h"
 
 #include <Eigen/Dense>
@@ -71,6 +72,7 @@ Vec3 solve_curved(const std::vector<Surface>& surfaces, const Vec3& guess, doubl
   options.gradient_tolerance = 1e-24;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
+  geo::quiet_solver_log();
   ceres::Solve(options, &problem, &summary);
   return summary.IsSolutionUsable() ? Vec3(x[0], x[1], x[2]) : guess;
 }

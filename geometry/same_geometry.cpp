@@ -1,6 +1,7 @@
 #include "geometry/same_geometry.h"
 
 #include "geometry/frame.h"
+#include "geometry/solver_log.h"
 #include "geometry/surface.h"
 #include "geometry/surface_params.h"
 
@@ -122,6 +123,7 @@ SurfaceFit fit_with_ceres(const Surface& model, const std::vector<Vec3>& points)
   options.gradient_tolerance = 1e-20;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
+  geo::quiet_solver_log();
   ceres::Solve(options, &problem, &summary);
   if (!summary.IsSolutionUsable()) {
     f.problem = "the solver stopped without a usable fit: " + summary.message;

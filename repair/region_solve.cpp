@@ -10,6 +10,7 @@
 #include "repair/region_solve.h"
 
 #include "geometry/same_geometry.h"
+#include "geometry/solver_log.h"
 #include "geometry/surface.h"
 #include "geometry/surface_params.h"
 #include "invariants/element_geometry.h"
@@ -137,7 +138,7 @@ struct SolveInput {
 // each rerun after an unsolved repair was vetoed (beautify.cpp), where the whole run is
 // replayed from the start. Each failure costs a full solve plus up to 24 more naming the
 // conflicting constraints; on CrankArm.brep (four merges that cannot be solved) that was
-// 35 of beautify's 38 s. The solve is a function of its input, so a repeat is answered
+// about 30 of beautify's 38 s. The solve is a function of its input, so a repeat is answered
 // from here. Per thread, the last few only.
 struct FailedSolves {
   static constexpr std::size_t kKept = 32;
@@ -404,6 +405,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     // per solve, each starting where the last ended. Started at full weight, the solver
     // crawls along the stiff valley where a surface and its vertices move together.
     ceres::Solver::Summary summary;
+    geo::quiet_solver_log();
     for (hard = 10 * w_data;; hard = std::min(w_hard, 100 * hard)) {
       ceres::Solve(options, &problem, &summary);
       if (hard >= w_hard) break;
