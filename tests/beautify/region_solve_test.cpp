@@ -256,6 +256,34 @@ TEST(BeautifySolve, AFailedSolveIsRememberedForItsInputOnly) {
   EXPECT_TRUE(loose.why.empty()) << loose.why;
 }
 
+// A large region (more than kMaxDenseParameters unknowns: region_solve.cpp) is solved with
+// sparse normal equations instead of a dense QR. It must still bring every vertex onto
+// its faces to the modelling precision, despite the squared conditioning of the normal
+// equations under the hard weight 1/precision: the top of a 6 x 6 grid box, every quad's
+// plane turned by up to 1e-3 rad, its 36 planes and 49 corners solved at once.
+TEST(BeautifySolve, ALargeRegionIsSolvedToThePrecision) {
+  geo::Tolerances tol{0.01, 1e-8};
+  Body b = build::grid_box(216);
+  detail::OriginalFaces original;
+  Touched t;
+  zoo::Rng rng(7);
+  for (FaceH f : b.faces()) {
+    const auto* p = std::get_if<geo::Plane>(&b.surface(f));
+    if (!p || p->frame.z.z() < 0.99) continue;
+    original[f] = {b.surface(f), corners(b, f), {}};
+    t.faces.insert(f);
+    tilt(b, f, rng.uniform(-1e-3, 1e-3));
+  }
+  ASSERT_EQ(t.faces.size(), 36u);
+  const detail::RegionSolve r = detail::solve_region(b, t, original, tol);
+  ASSERT_TRUE(r.why.empty()) << r.why;
+  EXPECT_TRUE(r.solved);
+  EXPECT_GT(3 * r.variable_vertices + 3 * r.variable_faces, 120);
+  for (FaceH f : t.faces)
+    for (const geo::Vec3& q : corners(b, f)) EXPECT_LE(std::abs(geo::signed_distance(b.surface(f), q)), tol.precision) << f;
+  EXPECT_TRUE(check_geometry(b, tol.precision).violations.empty());
+}
+
 TEST(BeautifySolve, FourPinnedCornersOnOnePlaneAreMet) {
   geo::Tolerances tol{0.01, 1e-8};
   PinnedQuad s = pinned_quad({1e-4, 2e-4, 3e-4, 2e-4});  // a tilted plane through all four
