@@ -52,6 +52,32 @@ bool meets(const geo::MeetPoint& m) {
   return m.status == geo::MeetStatus::exact || m.status == geo::MeetStatus::least_squares;
 }
 
+// An "underdetermined" meeting point that is still a point: two of the surfaces touch
+// (a side plane tangent to a fillet's cylinder along a ruling), so their normals agree
+// there and the solve sees a curve of solutions, but the surfaces meet in one point —
+// where the ruling crosses the third face. A gap at the corner where a fillet ends was
+// closed with a new face instead of that vertex, and refused (scan parts, filleted_block).
+// The point is taken when it lies on every surface to the precision and a step of a tenth
+// of the tolerance along the direction the normals leave free, either way, leaves some
+// surface by more than ten times the precision (on a true curve of solutions, such as two
+// faces on one plane, the step stays on all of them).
+bool isolated_meeting_point(const std::vector<geo::Surface>& ss, const geo::MeetPoint& m, const geo::Tolerances& tol) {
+  if (m.status != geo::MeetStatus::underdetermined || !(m.residual <= tol.precision) || ss.size() < 3) return false;
+  Eigen::MatrixXd normals(Eigen::Index(ss.size()), 3);
+  for (std::size_t i = 0; i < ss.size(); ++i) normals.row(Eigen::Index(i)) = geo::closest_point(ss[i], m.point).normal.transpose();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(normals, Eigen::ComputeFullV);
+  const Eigen::Vector3d sv = svd.singularValues().head<3>();
+  if (!(sv(1) > 1e-3 * sv(0))) return false;  // normals all along one direction: a surface of solutions
+  const geo::Vec3 free = svd.matrixV().col(2);
+  for (double side : {1.0, -1.0}) {
+    const geo::Vec3 q = m.point + side * 0.1 * tol.length * free;
+    double off = 0;
+    for (const geo::Surface& s : ss) off = std::max(off, std::abs(geo::signed_distance(s, q)));
+    if (!(off > 10 * tol.precision)) return false;
+  }
+  return true;
+}
+
 geo::Vec3 newell(const std::vector<geo::Vec3>& pts) {
   geo::Vec3 n = geo::Vec3::Zero();
   for (std::size_t i = 0; i < pts.size(); ++i) n += pts[i].cross(pts[(i + 1) % pts.size()]);
@@ -285,8 +311,9 @@ GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerance
   {
     std::vector<std::size_t> all(k);
     for (std::size_t i = 0; i < k; ++i) all[i] = i;
-    geo::MeetPoint m = geo::meet_point(surfaces_of(all), mean(0, k), tol.length, tol.precision);
-    bool ok = meets(m);
+    const std::vector<geo::Surface> ss = surfaces_of(all);
+    geo::MeetPoint m = geo::meet_point(ss, mean(0, k), tol.length, tol.precision);
+    bool ok = meets(m) || isolated_meeting_point(ss, m, tol);
     for (std::size_t i = 0; ok && i < k; ++i) ok = extends(b, jv[i], m.point);
     if (ok) {
       out.kind = GapClosure::one_vertex;
