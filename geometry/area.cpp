@@ -14,6 +14,7 @@
 #include <limits>
 #include <list>
 #include <optional>
+#include <unordered_set>
 
 namespace kintsugi::geo {
 
@@ -252,6 +253,12 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
   double area = 0.0;
   Vec3 moment = Vec3::Zero();
   const double step = o.max_angle_step > 0 ? o.max_angle_step : 0.05;
+  struct PairHash {
+    std::size_t operator()(const std::pair<double, double>& p) const {
+      return std::hash<double>()(p.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(p.second);
+    }
+  };
+  std::unordered_set<std::pair<double, double>, PairHash> bounded;  // parameters already in out.bounds
   // Regular n×n split of the triangle: grid point (i, j) = t0 + i/n (t1 - t0) + j/n (t2 - t0).
   auto split_regular = [&](const std::array<Vec2, 3>& t, int n) {
     const int base = static_cast<int>(out.mesh.vertices.size());
@@ -260,7 +267,11 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
     if (!ruled)
       for (int i = 0; i <= n; ++i)
         for (int j = 0; j <= n - i; ++j) {
-          const Vec3 p = evaluate(s, grid(i, j));
+          const Vec2 uv = grid(i, j);
+          // For the bounds a point counts once: the triangles' shared corners (each
+          // domain vertex is a corner of about six) are evaluated once.
+          if (fast && !bounded.insert({uv.x(), uv.y()}).second) continue;
+          const Vec3 p = evaluate(s, uv);
           if (fast) out.bounds.add(p);
           else out.mesh.vertices.push_back(p);
         }

@@ -41,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 
@@ -96,7 +97,22 @@ Handle(Geom_BSplineSurface) make_surface(const BSplineSurface& b) {
 // projection helper (not thread-safe: guarded).
 struct SurfaceCache {
   Handle(Geom_Surface) surface;
+  // Evaluation goes through the adaptor: for B-splines (and the B-spline curves under
+  // revolution, extrusion and offset surfaces) it keeps the current knot span's
+  // polynomial (BSplSLib_Cache), where Geom_BSplineSurface::D1 runs de Boor's algorithm
+  // (BSplCLib::Bohm) on every call: measured, most of a B-spline face's measure. The
+  // adaptor's cache is not thread-safe: evaluations hold `m`.
+  GeomAdaptor_Surface adaptor;
   Handle(ShapeAnalysis_Surface) analysis;
+  // Starting points for a projection that is not near the last one: the surface at the
+  // centres of a kSeedGrid × kSeedGrid grid over its bounds (built on first need; empty
+  // when the bounds are infinite).
+  static constexpr int kSeedGrid = 24;
+  bool seeds_built = false;
+  std::vector<gp_Pnt2d> seed_uv;
+  std::vector<gp_Pnt> seed_xyz;
+  // The last points ValueOfUV projected, with its answers.
+  std::vector<std::pair<gp_Pnt, gp_Pnt2d>> global;
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   // The last projection's parameters: projections come in runs (along a boundary, or a
   // meeting point's iterations), each point near the last, so Gauss-Newton from there
@@ -146,6 +162,7 @@ SurfaceCache& surface_cache(const Surface& s) {
     auto c = std::make_shared<SurfaceCache>();
     c->surface = build(s);
     c->surface->Bounds(c->u0, c->u1, c->v0, c->v1);
+    c->adaptor.Load(c->surface);
     c->analysis = new ShapeAnalysis_Surface(c->surface);
     if (std::isfinite(c->u0) && std::isfinite(c->u1) && std::isfinite(c->v0) && std::isfinite(c->v1) &&
         std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100) {
@@ -177,10 +194,66 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
   SurfaceCache& c = surface_cache(s);
   gp_Pnt p;
   gp_Vec a, b;
-  c.surface->D1(uv.x(), uv.y(), p, a, b);
+  {
+    std::lock_guard<std::mutex> lock(c.m);
+    c.adaptor.D1(uv.x(), uv.y(), p, a, b);
+  }
   *du = vec(a);
   *dv = vec(b);
   return vec(p);
+}
+
+// Gauss-Newton for the foot of `target` from (u, v), clamped to the bounds: boundary
+// points lie on them, a step may overshoot, and a point beyond the bounds has its nearest
+// point on them (where the clamped step vanishes although the residual is not normal to
+// the surface). Converged when a step moves the point by less than a billionth of
+// near_enough; `*uv` is then the last point and the result its distance to the target
+// (infinity when it did not converge). `*tangential` is the residual's largest share
+// along a tangent, relative to the tangent's length, leaving out a tangent along which
+// the point is held at a bound with the residual pointing out of the bounds (there the
+// point is the nearest within the bounds, as it should be).
+double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2d* uv, double* tangential) {
+  for (int it = 0; it < 20; ++it) {
+    gp_Pnt q;
+    gp_Vec su, sv;
+    c.adaptor.D1(u, v, q, su, sv);
+    const gp_Vec r(q, target);
+    const double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
+    if (!(det > 1e-300)) break;
+    const double ru = su.Dot(r), rv = sv.Dot(r);
+    const double un = std::clamp(u + (d * ru - b * rv) / det, c.u0, c.u1);
+    const double vn = std::clamp(v + (a * rv - b * ru) / det, c.v0, c.v1);
+    if (!std::isfinite(un) || !std::isfinite(vn)) break;
+    const double du = un - u, dv = vn - v;
+    u = un;
+    v = vn;
+    if ((du * su + dv * sv).Magnitude() <= 1e-9 * c.near_enough + Precision::Confusion() * 1e-3) {
+      gp_Pnt f;
+      c.adaptor.D1(u, v, f, su, sv);
+      const gp_Vec rf(f, target);
+      const double tu = rf.Dot(su), tv = rf.Dot(sv);
+      const bool held_u = (u <= c.u0 && tu <= 0) || (u >= c.u1 && tu >= 0);
+      const bool held_v = (v <= c.v0 && tv <= 0) || (v >= c.v1 && tv >= 0);
+      *tangential = std::max(held_u ? 0.0 : std::abs(tu) / std::max(su.Magnitude(), 1e-300),
+                             held_v ? 0.0 : std::abs(tv) / std::max(sv.Magnitude(), 1e-300));
+      *uv = gp_Pnt2d(u, v);
+      return rf.Magnitude();
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+void build_seeds(SurfaceCache& c) {
+  c.seeds_built = true;
+  const bool bounded = std::abs(c.u0) < 1e100 && std::abs(c.u1) < 1e100 && std::abs(c.v0) < 1e100 && std::abs(c.v1) < 1e100;
+  if (!bounded || !(c.u1 > c.u0) || !(c.v1 > c.v0)) return;
+  const int n = SurfaceCache::kSeedGrid;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double u = c.u0 + (c.u1 - c.u0) * (i + 0.5) / n, v = c.v0 + (c.v1 - c.v0) * (j + 0.5) / n;
+      c.seed_uv.emplace_back(u, v);
+      c.seed_xyz.push_back(c.adaptor.Value(u, v));
+    }
 }
 
 Vec2 surface_project(const Surface& s, const Vec3& p) {
@@ -188,39 +261,60 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
   std::lock_guard<std::mutex> lock(c.m);
   // Projections come in runs, each point near the last: Gauss-Newton from the last
   // answer (a few D1 evaluations), kept when it converges (within the surface's bounds)
-  // to a foot within `near_enough` of the point; otherwise the global grid search of
-  // ValueOfUV (measured: most of detect's and beautify's time on B-spline parts when
-  // used for every point).
+  // to a foot within `near_enough` of the point. Otherwise a global search the way
+  // Extrema's does it: the seed grid's local minima of the distance, the nearest few
+  // refined by Gauss-Newton, the nearest true foot kept (the residual normal to the
+  // surface, or pointing out of the bounds where the point is held at one). ValueOfUV
+  // only when none converges: it rebuilds Extrema's grid on every call (measured: most
+  // of detect's and beautify's time on B-spline parts when used for every point, a
+  // fifth when used for the points off the surface).
   const gp_Pnt target = pnt(p);
   gp_Pnt2d uv;
-  bool found = false;
-  if (c.has_last) {
-    double u = c.last.X(), v = c.last.Y();
-    for (int it = 0; it < 20 && !found; ++it) {
-      gp_Pnt q;
-      gp_Vec su, sv;
-      c.surface->D1(u, v, q, su, sv);
-      const gp_Vec r(q, target);
-      const double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
-      if (!(det > 1e-300)) break;
-      const double ru = su.Dot(r), rv = sv.Dot(r);
-      // Clamped to the bounds: boundary points lie on them, a step may overshoot, and a
-      // point beyond the bounds has its nearest point on them (where the clamped step
-      // vanishes although the residual is not normal to the surface).
-      const double un = std::clamp(u + (d * ru - b * rv) / det, c.u0, c.u1);
-      const double vn = std::clamp(v + (a * rv - b * ru) / det, c.v0, c.v1);
-      if (!std::isfinite(un) || !std::isfinite(vn)) break;
-      const double du = un - u, dv = vn - v;
-      u = un;
-      v = vn;
-      // Converged: the step moves the point by less than a billionth of near_enough.
-      if ((du * su + dv * sv).Magnitude() <= 1e-9 * c.near_enough + Precision::Confusion() * 1e-3) {
-        found = c.surface->Value(u, v).Distance(target) <= c.near_enough;
-        uv = gp_Pnt2d(u, v);
+  double tangential = 0;
+  bool found = c.has_last && newton(c, target, c.last.X(), c.last.Y(), &uv, &tangential) <= c.near_enough;
+  if (!found) {
+    if (!c.seeds_built) build_seeds(c);
+    if (!c.seed_xyz.empty()) {
+      const int n = SurfaceCache::kSeedGrid;
+      std::vector<double> d2(c.seed_xyz.size());
+      for (std::size_t i = 0; i < d2.size(); ++i) d2[i] = c.seed_xyz[i].SquareDistance(target);
+      std::vector<std::pair<double, std::size_t>> minima;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double here = d2[std::size_t(i * n + j)];
+          bool least = true;
+          for (int di = -1; di <= 1 && least; ++di)
+            for (int dj = -1; dj <= 1 && least; ++dj) {
+              const int a = i + di, b = j + dj;
+              if ((di || dj) && a >= 0 && a < n && b >= 0 && b < n && d2[std::size_t(a * n + b)] < here) least = false;
+            }
+          if (least) minima.emplace_back(here, std::size_t(i * n + j));
+        }
+      std::sort(minima.begin(), minima.end());
+      if (minima.size() > 4) minima.resize(4);
+      double best = std::numeric_limits<double>::infinity();
+      for (const auto& [ignored, k] : minima) {
+        gp_Pnt2d q;
+        const double dist = newton(c, target, c.seed_uv[k].X(), c.seed_uv[k].Y(), &q, &tangential);
+        if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough) best = dist, uv = q, found = true;
       }
     }
   }
-  if (!found) uv = c.analysis->ValueOfUV(target, Precision::Confusion());
+  if (!found) {
+    // The same point comes back (a vertex on a degenerate side of the surface, where
+    // |S_u| vanishes and Gauss-Newton cannot converge, is projected once per sample of
+    // each of its edges, in every measure of its face): ValueOfUV's answers are kept.
+    const auto same = [&](const std::pair<gp_Pnt, gp_Pnt2d>& e) {
+      return e.first.X() == target.X() && e.first.Y() == target.Y() && e.first.Z() == target.Z();
+    };
+    if (auto it = std::find_if(c.global.begin(), c.global.end(), same); it != c.global.end()) {
+      uv = it->second;
+    } else {
+      uv = c.analysis->ValueOfUV(target, Precision::Confusion());
+      if (c.global.size() >= 64) c.global.erase(c.global.begin());
+      c.global.emplace_back(target, uv);
+    }
+  }
   c.last = uv;
   c.has_last = true;
   return Vec2(uv.X(), uv.Y());
