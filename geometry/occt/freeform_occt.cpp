@@ -206,39 +206,54 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
 // Gauss-Newton for the foot of `target` from (u, v), clamped to the bounds: boundary
 // points lie on them, a step may overshoot, and a point beyond the bounds has its nearest
 // point on them (where the clamped step vanishes although the residual is not normal to
-// the surface). Converged when a step moves the point by less than a billionth of
-// near_enough; `*uv` is then the last point and the result its distance to the target
-// (infinity when it did not converge). `*tangential` is the residual's largest share
-// along a tangent, relative to the tangent's length, leaving out a tangent along which
-// the point is held at a bound with the residual pointing out of the bounds (there the
-// point is the nearest within the bounds, as it should be).
+// the surface). A step that does not bring the point nearer is halved until it does (far
+// off a curved surface the full step can overshoot the foot back and forth for ever).
+// Converged when a step moves the point by less than a billionth of near_enough, or no
+// step brings it nearer; `*uv` is then the last point and the result its distance to the
+// target (infinity when it did not converge). `*tangential` is the residual's largest
+// share along a tangent, relative to the tangent's length, leaving out a tangent along
+// which the point is held at a bound with the residual pointing out of the bounds (there
+// the point is the nearest within the bounds, as it should be).
 double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2d* uv, double* tangential) {
-  for (int it = 0; it < 20; ++it) {
-    gp_Pnt q;
-    gp_Vec su, sv;
-    c.adaptor.D1(u, v, q, su, sv);
+  gp_Pnt q;
+  gp_Vec su, sv;
+  c.adaptor.D1(u, v, q, su, sv);
+  double dist = q.Distance(target);
+  auto done = [&]() {
+    const gp_Vec r(q, target);
+    const double tu = r.Dot(su), tv = r.Dot(sv);
+    const bool held_u = (u <= c.u0 && tu <= 0) || (u >= c.u1 && tu >= 0);
+    const bool held_v = (v <= c.v0 && tv <= 0) || (v >= c.v1 && tv >= 0);
+    *tangential = std::max(held_u ? 0.0 : std::abs(tu) / std::max(su.Magnitude(), 1e-300),
+                           held_v ? 0.0 : std::abs(tv) / std::max(sv.Magnitude(), 1e-300));
+    *uv = gp_Pnt2d(u, v);
+    return dist;
+  };
+  for (int it = 0; it < 30 && std::isfinite(dist); ++it) {
     const gp_Vec r(q, target);
     const double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
     if (!(det > 1e-300)) break;
     const double ru = su.Dot(r), rv = sv.Dot(r);
-    const double un = std::clamp(u + (d * ru - b * rv) / det, c.u0, c.u1);
-    const double vn = std::clamp(v + (a * rv - b * ru) / det, c.v0, c.v1);
-    if (!std::isfinite(un) || !std::isfinite(vn)) break;
-    const double du = un - u, dv = vn - v;
-    u = un;
-    v = vn;
-    if ((du * su + dv * sv).Magnitude() <= 1e-9 * c.near_enough + Precision::Confusion() * 1e-3) {
-      gp_Pnt f;
-      c.adaptor.D1(u, v, f, su, sv);
-      const gp_Vec rf(f, target);
-      const double tu = rf.Dot(su), tv = rf.Dot(sv);
-      const bool held_u = (u <= c.u0 && tu <= 0) || (u >= c.u1 && tu >= 0);
-      const bool held_v = (v <= c.v0 && tv <= 0) || (v >= c.v1 && tv >= 0);
-      *tangential = std::max(held_u ? 0.0 : std::abs(tu) / std::max(su.Magnitude(), 1e-300),
-                             held_v ? 0.0 : std::abs(tv) / std::max(sv.Magnitude(), 1e-300));
-      *uv = gp_Pnt2d(u, v);
-      return rf.Magnitude();
+    const double du = (d * ru - b * rv) / det, dv = (a * rv - b * ru) / det;
+    if (!std::isfinite(du) || !std::isfinite(dv)) break;
+    bool moved = false;
+    double un = u, vn = v;
+    gp_Pnt qn;
+    gp_Vec sun, svn;
+    for (double t = 1; t > 1.0 / 4096; t *= 0.5) {
+      un = std::clamp(u + t * du, c.u0, c.u1);
+      vn = std::clamp(v + t * dv, c.v0, c.v1);
+      c.adaptor.D1(un, vn, qn, sun, svn);
+      if (qn.Distance(target) <= dist) {
+        moved = true;
+        break;
+      }
     }
+    if (!moved) return done();  // no step brings it nearer: a local foot (to rounding)
+    const double step = ((un - u) * su + (vn - v) * sv).Magnitude();
+    u = un, v = vn, q = qn, su = sun, sv = svn;
+    dist = q.Distance(target);
+    if (step <= 1e-9 * c.near_enough + Precision::Confusion() * 1e-3) return done();
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -262,8 +277,8 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
   // Projections come in runs, each point near the last: Gauss-Newton from the last
   // answer (a few D1 evaluations), kept when it converges (within the surface's bounds)
   // to a foot within `near_enough` of the point. Otherwise a global search the way
-  // Extrema's does it: the seed grid's local minima of the distance, the nearest few
-  // refined by Gauss-Newton, the nearest true foot kept (the residual normal to the
+  // Extrema's does it: the seed grid's local minima of the distance (the nearest four)
+  // and the six nearest seeds refined by Gauss-Newton, the nearest true foot kept (the residual normal to the
   // surface, or pointing out of the bounds where the point is held at one). ValueOfUV
   // only when none converges: it rebuilds Extrema's grid on every call (measured: most
   // of detect's and beautify's time on B-spline parts when used for every point, a
@@ -292,6 +307,13 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
         }
       std::sort(minima.begin(), minima.end());
       if (minima.size() > 4) minima.resize(4);
+      // And the nearest few seeds whatever their neighbours: a foot between seeds can be
+      // nearer than the seeds' own minimum says, in the basin of a neighbour of it.
+      std::vector<std::pair<double, std::size_t>> all(d2.size());
+      for (std::size_t i = 0; i < d2.size(); ++i) all[i] = {d2[i], i};
+      std::partial_sort(all.begin(), all.begin() + 6, all.end());
+      for (int i = 0; i < 6; ++i)
+        if (std::find(minima.begin(), minima.end(), all[std::size_t(i)]) == minima.end()) minima.push_back(all[std::size_t(i)]);
       double best = std::numeric_limits<double>::infinity();
       for (const auto& [ignored, k] : minima) {
         gp_Pnt2d q;

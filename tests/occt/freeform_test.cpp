@@ -25,10 +25,16 @@
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepTools.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <gp_Ax1.hxx>
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 
 namespace kintsugi {
 namespace {
@@ -110,6 +116,41 @@ TEST(FreeForm, FollowedFootGivesTheGlobalDistance) {
     ++compared;
   }
   EXPECT_EQ(compared, 61);
+}
+
+// A projection with no last foot to follow starts from a seed grid's local minima
+// (geometry/occt/freeform_occt.cpp): on a wavy B-spline patch, for points on both sides of
+// it, the nearest point found is never farther than OpenCASCADE's exhaustive extremum
+// search finds, nor than the point's own offset along the normal.
+TEST(FreeForm, ProjectionFindsTheGlobalFoot) {
+  geo::occt::register_freeform_backend();
+  TColgp_Array2OfPnt pts(1, 12, 1, 12);
+  for (int i = 1; i <= 12; ++i)
+    for (int j = 1; j <= 12; ++j) {
+      const double x = (i - 1) * 10.0 / 11, y = (j - 1) * 10.0 / 11;
+      pts(i, j) = gp_Pnt(x, y, 0.8 * std::sin(x) * std::cos(0.7 * y));
+    }
+  Handle(Geom_BSplineSurface) patch = GeomAPI_PointsToBSplineSurface(pts).Surface();
+  const geo::Surface s = geo::occt::bspline_data(patch);
+  double u0, u1, v0, v1;
+  patch->Bounds(u0, u1, v0, v1);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int k = 0; k < 400; ++k) {
+    const geo::Vec2 uv(u0 + (u1 - u0) * (0.05 + 0.9 * unit(rng)), v0 + (v1 - v0) * (0.05 + 0.9 * unit(rng)));
+    const double offset = -0.4 + 0.8 * unit(rng);
+    const geo::Vec3 p = geo::evaluate(s, uv) + offset * geo::normal(s, uv);
+    // A fresh copy of the data has no last foot to follow: the seeds are searched.
+    const geo::Surface fresh = geo::occt::bspline_data(patch);
+    const geo::SurfacePoint ours = geo::closest_point(fresh, p);
+    EXPECT_LE(std::abs(ours.distance), std::abs(offset) + 1e-9) << "point " << k;
+    GeomAPI_ProjectPointOnSurf occ(gp_Pnt(p.x(), p.y(), p.z()), patch);
+    if (occ.NbPoints() == 0) continue;
+    EXPECT_LE(std::abs(ours.distance), occ.LowerDistance() + 1e-9) << "point " << k;
+    ++compared;
+  }
+  EXPECT_GT(compared, 300);
 }
 
 TEST(FreeForm, PrismOnABSplineProfileIsReadExactly) {
