@@ -1041,14 +1041,14 @@ class DocumentReader final : public ElementSink {
     const std::pair<const char*, const IdTable*> words[] = {{"vertex ", &vertex_ids_}, {"edge ", &edge_ids_},
                                                             {"loop ", &loop_ids_},     {"face ", &face_ids_},
                                                             {"shell ", &shell_ids_}};
-    std::uint64_t n;
+    std::uint64_t n = 0;
     for (auto [word, table] : words) {
       std::size_t len = std::strlen(word);
       if (element.rfind(word, 0) != 0) continue;
       std::size_t end = number_after(len, &n);
       if (end == std::string::npos) return "";
       std::string p = place(*table, n);
-      std::uint64_t side;
+      std::uint64_t side = 0;
       if (table == &edge_ids_ && !p.empty() && element.compare(end, 11, " half-edge ") == 0 &&
           number_after(end + 11, &side) != std::string::npos && side < 2)
         p = spell(spell(p, "he"), std::size_t(side));
