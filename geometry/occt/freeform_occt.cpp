@@ -114,6 +114,7 @@ struct SurfaceCache {
   // The last points ValueOfUV projected, with its answers.
   std::vector<std::pair<gp_Pnt, gp_Pnt2d>> global;
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bool bounded = false;  // all four bounds finite
   // The last projection's parameters: projections come in runs (along a boundary, or a
   // meeting point's iterations), each point near the last, so Gauss-Newton from there
   // replaces the global grid search of ValueOfUV (measured: most of detect's and
@@ -164,8 +165,9 @@ SurfaceCache& surface_cache(const Surface& s) {
     c->surface->Bounds(c->u0, c->u1, c->v0, c->v1);
     c->adaptor.Load(c->surface);
     c->analysis = new ShapeAnalysis_Surface(c->surface);
-    if (std::isfinite(c->u0) && std::isfinite(c->u1) && std::isfinite(c->v0) && std::isfinite(c->v1) &&
-        std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100) {
+    c->bounded = std::isfinite(c->u0) && std::isfinite(c->u1) && std::isfinite(c->v0) && std::isfinite(c->v1) &&
+                 std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100;
+    if (c->bounded) {
       Bnd_Box box;
       BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
       if (!box.IsVoid()) c->near_enough = std::max(Precision::Confusion(), 1e-2 * std::sqrt(box.SquareExtent()));
@@ -260,8 +262,7 @@ double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2
 
 void build_seeds(SurfaceCache& c) {
   c.seeds_built = true;
-  const bool bounded = std::abs(c.u0) < 1e100 && std::abs(c.u1) < 1e100 && std::abs(c.v0) < 1e100 && std::abs(c.v1) < 1e100;
-  if (!bounded || !(c.u1 > c.u0) || !(c.v1 > c.v0)) return;
+  if (!c.bounded || !(c.u1 > c.u0) || !(c.v1 > c.v0)) return;
   const int n = SurfaceCache::kSeedGrid;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
@@ -271,72 +272,78 @@ void build_seeds(SurfaceCache& c) {
     }
 }
 
+// The global search the way Extrema's does it: the seed grid's local minima of the
+// distance (the nearest four) and the six nearest seeds, refined by Gauss-Newton; the
+// nearest true foot (the residual normal to the surface, or pointing out of the bounds
+// where the point is held at one) goes to `*uv`. False when none converges.
+bool seeded_foot(SurfaceCache& c, const gp_Pnt& target, gp_Pnt2d* uv) {
+  if (!c.seeds_built) build_seeds(c);
+  if (c.seed_xyz.empty()) return false;
+  const int n = SurfaceCache::kSeedGrid;
+  std::vector<double> d2(c.seed_xyz.size());
+  for (std::size_t i = 0; i < d2.size(); ++i) d2[i] = c.seed_xyz[i].SquareDistance(target);
+  std::vector<std::pair<double, std::size_t>> starts;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double here = d2[std::size_t(i * n + j)];
+      bool least = true;
+      for (int di = -1; di <= 1 && least; ++di)
+        for (int dj = -1; dj <= 1 && least; ++dj) {
+          const int a = i + di, b = j + dj;
+          if ((di || dj) && a >= 0 && a < n && b >= 0 && b < n && d2[std::size_t(a * n + b)] < here) least = false;
+        }
+      if (least) starts.emplace_back(here, std::size_t(i * n + j));
+    }
+  std::sort(starts.begin(), starts.end());
+  if (starts.size() > 4) starts.resize(4);
+  // And the nearest few seeds whatever their neighbours: a foot between seeds can be
+  // nearer than the seeds' own minimum says, in the basin of a neighbour of it.
+  std::vector<std::pair<double, std::size_t>> all(d2.size());
+  for (std::size_t i = 0; i < d2.size(); ++i) all[i] = {d2[i], i};
+  std::partial_sort(all.begin(), all.begin() + 6, all.end());
+  for (int i = 0; i < 6; ++i)
+    if (std::find(starts.begin(), starts.end(), all[std::size_t(i)]) == starts.end()) starts.push_back(all[std::size_t(i)]);
+  bool found = false;
+  double best = std::numeric_limits<double>::infinity(), tangential = 0;
+  for (const auto& [ignored, k] : starts) {
+    gp_Pnt2d q;
+    const double dist = newton(c, target, c.seed_uv[k].X(), c.seed_uv[k].Y(), &q, &tangential);
+    if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough) best = dist, *uv = q, found = true;
+  }
+  return found;
+}
+
+// ValueOfUV, for what the other searches do not reach. The same point comes back (a
+// vertex on a degenerate side of the surface, where |S_u| vanishes and Gauss-Newton
+// cannot converge, is projected once per sample of each of its edges, in every measure
+// of its face; measured: over half of the calls on Bottom.brep and bearing.iges), so its
+// answers for the last 64 points are kept.
+gp_Pnt2d global_foot(SurfaceCache& c, const gp_Pnt& target) {
+  const auto same = [&](const std::pair<gp_Pnt, gp_Pnt2d>& e) {
+    return e.first.X() == target.X() && e.first.Y() == target.Y() && e.first.Z() == target.Z();
+  };
+  if (auto it = std::find_if(c.global.begin(), c.global.end(), same); it != c.global.end()) return it->second;
+  const gp_Pnt2d uv = c.analysis->ValueOfUV(target, Precision::Confusion());
+  if (c.global.size() >= 64) c.global.erase(c.global.begin());
+  c.global.emplace_back(target, uv);
+  return uv;
+}
+
 Vec2 surface_project(const Surface& s, const Vec3& p) {
   SurfaceCache& c = surface_cache(s);
   std::lock_guard<std::mutex> lock(c.m);
   // Projections come in runs, each point near the last: Gauss-Newton from the last
   // answer (a few D1 evaluations), kept when it converges (within the surface's bounds)
-  // to a foot within `near_enough` of the point. Otherwise a global search the way
-  // Extrema's does it: the seed grid's local minima of the distance (the nearest four)
-  // and the six nearest seeds refined by Gauss-Newton, the nearest true foot kept (the residual normal to the
-  // surface, or pointing out of the bounds where the point is held at one). ValueOfUV
-  // only when none converges: it rebuilds Extrema's grid on every call (measured: most
-  // of detect's and beautify's time on B-spline parts when used for every point, a
-  // fifth when used for the points off the surface).
+  // to a foot within `near_enough` of the point. Otherwise the seeded global search;
+  // ValueOfUV only when that finds nothing: it rebuilds Extrema's grid on every call
+  // (measured: most of detect's and beautify's time on B-spline parts when used for
+  // every point, a fifth when used for the points off the surface).
   const gp_Pnt target = pnt(p);
   gp_Pnt2d uv;
   double tangential = 0;
-  bool found = c.has_last && newton(c, target, c.last.X(), c.last.Y(), &uv, &tangential) <= c.near_enough;
-  if (!found) {
-    if (!c.seeds_built) build_seeds(c);
-    if (!c.seed_xyz.empty()) {
-      const int n = SurfaceCache::kSeedGrid;
-      std::vector<double> d2(c.seed_xyz.size());
-      for (std::size_t i = 0; i < d2.size(); ++i) d2[i] = c.seed_xyz[i].SquareDistance(target);
-      std::vector<std::pair<double, std::size_t>> minima;
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          const double here = d2[std::size_t(i * n + j)];
-          bool least = true;
-          for (int di = -1; di <= 1 && least; ++di)
-            for (int dj = -1; dj <= 1 && least; ++dj) {
-              const int a = i + di, b = j + dj;
-              if ((di || dj) && a >= 0 && a < n && b >= 0 && b < n && d2[std::size_t(a * n + b)] < here) least = false;
-            }
-          if (least) minima.emplace_back(here, std::size_t(i * n + j));
-        }
-      std::sort(minima.begin(), minima.end());
-      if (minima.size() > 4) minima.resize(4);
-      // And the nearest few seeds whatever their neighbours: a foot between seeds can be
-      // nearer than the seeds' own minimum says, in the basin of a neighbour of it.
-      std::vector<std::pair<double, std::size_t>> all(d2.size());
-      for (std::size_t i = 0; i < d2.size(); ++i) all[i] = {d2[i], i};
-      std::partial_sort(all.begin(), all.begin() + 6, all.end());
-      for (int i = 0; i < 6; ++i)
-        if (std::find(minima.begin(), minima.end(), all[std::size_t(i)]) == minima.end()) minima.push_back(all[std::size_t(i)]);
-      double best = std::numeric_limits<double>::infinity();
-      for (const auto& [ignored, k] : minima) {
-        gp_Pnt2d q;
-        const double dist = newton(c, target, c.seed_uv[k].X(), c.seed_uv[k].Y(), &q, &tangential);
-        if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough) best = dist, uv = q, found = true;
-      }
-    }
-  }
-  if (!found) {
-    // The same point comes back (a vertex on a degenerate side of the surface, where
-    // |S_u| vanishes and Gauss-Newton cannot converge, is projected once per sample of
-    // each of its edges, in every measure of its face): ValueOfUV's answers are kept.
-    const auto same = [&](const std::pair<gp_Pnt, gp_Pnt2d>& e) {
-      return e.first.X() == target.X() && e.first.Y() == target.Y() && e.first.Z() == target.Z();
-    };
-    if (auto it = std::find_if(c.global.begin(), c.global.end(), same); it != c.global.end()) {
-      uv = it->second;
-    } else {
-      uv = c.analysis->ValueOfUV(target, Precision::Confusion());
-      if (c.global.size() >= 64) c.global.erase(c.global.begin());
-      c.global.emplace_back(target, uv);
-    }
-  }
+  const bool found = (c.has_last && newton(c, target, c.last.X(), c.last.Y(), &uv, &tangential) <= c.near_enough) ||
+                     seeded_foot(c, target, &uv);
+  if (!found) uv = global_foot(c, target);
   c.last = uv;
   c.has_last = true;
   return Vec2(uv.X(), uv.Y());
