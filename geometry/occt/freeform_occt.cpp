@@ -113,6 +113,7 @@ struct SurfaceCache {
   std::vector<gp_Pnt> seed_xyz;
   // The last points ValueOfUV projected, with its answers.
   std::vector<std::pair<gp_Pnt, gp_Pnt2d>> global;
+  ProjectionCounts counts;
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   bool bounded = false;  // all four bounds finite
   // The last projection's parameters: projections come in runs (along a boundary, or a
@@ -231,12 +232,30 @@ double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2
     *uv = gp_Pnt2d(u, v);
     return dist;
   };
-  for (int it = 0; it < 30 && std::isfinite(dist); ++it) {
+  for (int it = 0; it < 100 && std::isfinite(dist); ++it) {
     const gp_Vec r(q, target);
-    const double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
+    double a = su.Dot(su), b = su.Dot(sv), d = sv.Dot(sv), det = a * d - b * b;
     if (!(det > 1e-300)) break;
     const double ru = su.Dot(r), rv = sv.Dot(r);
-    const double du = (d * ru - b * rv) / det, dv = (a * rv - b * ru) / det;
+    if (it >= 3) {
+      // Still going after three steps: Gauss-Newton leaves out the surface's curvature,
+      // and where the point is near a centre of curvature (the distance almost constant
+      // along a parameter) it creeps, a hundredth of the way per step. Newton's full
+      // Hessian, while it is positive definite.
+      gp_Pnt ignored;
+      gp_Vec su2, sv2, suu, svv, suv;
+      c.adaptor.D2(u, v, ignored, su2, sv2, suu, svv, suv);
+      const double ha = a - r.Dot(suu), hb = b - r.Dot(suv), hd = d - r.Dot(svv), hdet = ha * hd - hb * hb;
+      if (ha > 0 && hd > 0 && hdet > 1e-12 * a * d) a = ha, b = hb, d = hd, det = hdet;
+    }
+    // A parameter at a bound with the residual pointing out of the bounds stays there and
+    // the other is solved for alone (the joint step, clamped, would move the free one by a
+    // share meant to go with the held one's move, and stop short of the foot).
+    const bool held_u = (u <= c.u0 && ru <= 0) || (u >= c.u1 && ru >= 0);
+    const bool held_v = (v <= c.v0 && rv <= 0) || (v >= c.v1 && rv >= 0);
+    if (held_u && held_v) return done();  // the nearest point within the bounds, at a corner
+    double du = held_u ? 0 : held_v ? ru / a : (d * ru - b * rv) / det;
+    double dv = held_v ? 0 : held_u ? rv / d : (a * rv - b * ru) / det;
     if (!std::isfinite(du) || !std::isfinite(dv)) break;
     bool moved = false;
     double un = u, vn = v;
@@ -308,7 +327,7 @@ bool seeded_foot(SurfaceCache& c, const gp_Pnt& target, gp_Pnt2d* uv) {
   for (const auto& [ignored, k] : starts) {
     gp_Pnt2d q;
     const double dist = newton(c, target, c.seed_uv[k].X(), c.seed_uv[k].Y(), &q, &tangential);
-    if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough) best = dist, *uv = q, found = true;
+    if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough + 1e-2 * Precision::Confusion()) best = dist, *uv = q, found = true;
   }
   return found;
 }
@@ -323,11 +342,22 @@ gp_Pnt2d global_foot(SurfaceCache& c, const gp_Pnt& target) {
     return e.first.X() == target.X() && e.first.Y() == target.Y() && e.first.Z() == target.Z();
   };
   if (auto it = std::find_if(c.global.begin(), c.global.end(), same); it != c.global.end()) return it->second;
+  ++c.counts.value_of_uv;
   const gp_Pnt2d uv = c.analysis->ValueOfUV(target, Precision::Confusion());
   if (c.global.size() >= 64) c.global.erase(c.global.begin());
   c.global.emplace_back(target, uv);
   return uv;
 }
+
+}  // namespace
+
+ProjectionCounts projection_counts(const Surface& s) {
+  SurfaceCache& c = surface_cache(s);
+  std::lock_guard<std::mutex> lock(c.m);
+  return c.counts;
+}
+
+namespace {
 
 Vec2 surface_project(const Surface& s, const Vec3& p) {
   SurfaceCache& c = surface_cache(s);
@@ -341,8 +371,12 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
   const gp_Pnt target = pnt(p);
   gp_Pnt2d uv;
   double tangential = 0;
-  const bool found = (c.has_last && newton(c, target, c.last.X(), c.last.Y(), &uv, &tangential) <= c.near_enough) ||
-                     seeded_foot(c, target, &uv);
+  ++c.counts.projections;
+  bool found = c.has_last && newton(c, target, c.last.X(), c.last.Y(), &uv, &tangential) <= c.near_enough;
+  if (!found) {
+    ++c.counts.seeded;
+    found = seeded_foot(c, target, &uv);
+  }
   if (!found) uv = global_foot(c, target);
   c.last = uv;
   c.has_last = true;

@@ -30,4 +30,13 @@ std::optional<BSplineSurface> to_bspline(const Handle(Geom_Surface)& s, std::str
 Handle(Geom_Surface) geom_surface(const Surface& s);  // free-form alternatives only; null otherwise
 Handle(Geom_Curve) geom_curve(const Curve& c);        // BSplineCurve only; null otherwise
 
+// How the projections onto a free-form surface went (geo::closest_point and the
+// parameters of its points): how many there were, how many did not follow the last foot
+// and searched the seed grid, and how many of those found no foot there and were left to
+// ShapeAnalysis_Surface::ValueOfUV (a costly grid search; its memo's hits not counted).
+struct ProjectionCounts {
+  long projections = 0, seeded = 0, value_of_uv = 0;
+};
+ProjectionCounts projection_counts(const Surface& s);
+
 }  // namespace kintsugi::geo::occt

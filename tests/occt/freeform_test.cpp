@@ -24,6 +24,9 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepTools.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
@@ -34,6 +37,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace kintsugi {
@@ -151,6 +155,70 @@ TEST(FreeForm, ProjectionFindsTheGlobalFoot) {
     ++compared;
   }
   EXPECT_GT(compared, 300);
+}
+
+// Two places where Gauss-Newton from the seed grid used to stop short of the foot and
+// leave the point to ValueOfUV's costly grid search (a third of beautify's time on
+// OpenCASCADE's Top.brep): a point beyond a corner of the parameter domain, where the
+// joint step, clamped, moved the free parameter by the share meant for the held one; and
+// a point near a centre of curvature, where the distance hardly changes along the
+// surface and Gauss-Newton, leaving out the curvature, crept a hundredth of the way per
+// step. Both are now answered by the search itself, exactly.
+TEST(FreeForm, ProjectionNeedsNoGridSearchAtCornersOrNearAnAxis) {
+  geo::occt::register_freeform_backend();
+  TColgp_Array2OfPnt pts(1, 12, 1, 12);
+  for (int i = 1; i <= 12; ++i)
+    for (int j = 1; j <= 12; ++j) {
+      const double x = (i - 1) * 10.0 / 11, y = (j - 1) * 10.0 / 11;
+      pts(i, j) = gp_Pnt(x + 0.6 * y, y, 0.8 * std::sin(x) * std::cos(0.7 * y));  // sheared: S_u . S_v != 0
+    }
+  Handle(Geom_BSplineSurface) patch = GeomAPI_PointsToBSplineSurface(pts).Surface();
+  double u0, u1, v0, v1;
+  patch->Bounds(u0, u1, v0, v1);
+  int corners = 0;
+  for (const double u : {u0, u1})
+    for (const double v : {v0, v1})
+      for (const double reach : {1e-6, 1e-3, 0.3}) {
+        // Out of the domain along both parameters, and off the surface along its normal.
+        gp_Pnt c;
+        gp_Vec su, sv;
+        patch->D1(u, v, c, su, sv);
+        const gp_Vec out = (u == u0 ? -1.0 : 1.0) * su.Normalized() + (v == v0 ? -0.3 : 0.3) * sv.Normalized();
+        const gp_Vec n = su.Crossed(sv).Normalized();
+        const gp_Pnt p = c.Translated(reach * out + 0.5 * reach * n);
+        const geo::Surface fresh = geo::occt::bspline_data(patch);
+        const geo::Vec2 uv = geo::parameters(fresh, geo::Vec3(p.X(), p.Y(), p.Z()));
+        // No point of the patch is nearer: its sides sampled densely (the nearest point
+        // is on one of them, or the corner), and a grid inside.
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int i = 0; i <= 4000; ++i) {
+          const double a = u0 + (u1 - u0) * i / 4000, b = v0 + (v1 - v0) * i / 4000;
+          for (const gp_Pnt& q : {patch->Value(a, v0), patch->Value(a, v1), patch->Value(u0, b), patch->Value(u1, b)})
+            nearest = std::min(nearest, q.Distance(p));
+        }
+        for (int i = 1; i < 100; ++i)
+          for (int j = 1; j < 100; ++j)
+            nearest = std::min(nearest, patch->Value(u0 + (u1 - u0) * i / 100, v0 + (v1 - v0) * j / 100).Distance(p));
+        const double ours = patch->Value(uv.x(), uv.y()).Distance(p);
+        EXPECT_LE(ours, nearest + 1e-12) << "corner " << u << " " << v << " reach " << reach;
+        EXPECT_GE(ours, 0.999 * nearest - 1e-12) << "corner " << u << " " << v << " reach " << reach;
+        EXPECT_EQ(geo::occt::projection_counts(fresh).value_of_uv, 0) << "corner " << u << " " << v << " reach " << reach;
+        ++corners;
+      }
+  EXPECT_EQ(corners, 12);
+  // A quarter of a cylinder of radius 5 as a B-spline; points 0.3 off its axis, between
+  // its ends and inside its angle: the foot is on the ray from the axis through the point.
+  Handle(Geom_Surface) quarter =
+      new Geom_RectangularTrimmedSurface(new Geom_CylindricalSurface(gp_Ax3(gp::XOY()), 5.0), 0.0, M_PI / 2, 0.0, 10.0);
+  const Handle(Geom_BSplineSurface) cylinder = GeomConvert::SurfaceToBSplineSurface(quarter);
+  for (int k = 0; k < 20; ++k) {
+    const double angle = (0.1 + 0.8 * k / 19.0) * M_PI / 2, z = 1.0 + 8.0 * k / 19.0;
+    const geo::Vec3 p(0.3 * std::cos(angle), 0.3 * std::sin(angle), z);
+    const geo::Surface fresh = geo::occt::bspline_data(cylinder);
+    const geo::SurfacePoint foot = geo::closest_point(fresh, p);
+    EXPECT_NEAR(std::abs(foot.distance), 4.7, 1e-7) << "point " << k;
+    EXPECT_EQ(geo::occt::projection_counts(fresh).value_of_uv, 0) << "point " << k;
+  }
 }
 
 TEST(FreeForm, PrismOnABSplineProfileIsReadExactly) {
