@@ -6,6 +6,7 @@
 // sphere poles and cone apexes — is added per wire by ShapeFix_Wire with every fix that
 // could change the topology switched off.
 #include "io/occt/convert.h"
+#include "io/occt/pcurve.h"
 
 #include "geometry/curve.h"
 #include "geometry/occt/freeform_occt.h"
@@ -516,19 +517,12 @@ class Builder {
     return Vec3(d.normalized());
   }
 
-  // pcurves of a free-form face's edges by our own projection (geo::parameters: Newton
-  // from the last foot along the edge), interpolated through the edge's samples and
-  // checked halfway between them: the surface at the pcurve's point within half the
-  // edge's tolerance of the curve's, else twice the samples (up to 1025). ShapeFix
-  // projects every sample by ShapeAnalysis_Surface's grid search instead: measured, most
-  // of writing a B-spline part (a second for terrain.brep's one face). Left to ShapeFix:
-  // seams (two pcurves a period apart), edges through a degenerate point of the surface
-  // (a pole, where the parameters are not defined by the point), and any edge the check
-  // does not pass.
+  // pcurves of a free-form face's edges by our own projection (io/occt/pcurve.h), where
+  // it can vouch for them; ShapeFix below does the rest. Seams (two pcurves a period
+  // apart) are left to ShapeFix.
   void project_pcurves(const geo::Surface& s, const std::vector<std::pair<LoopH, TopoDS_Wire>>& wires,
                        const TopoDS_Face& face) {
     const Handle(Geom_Surface) gs = BRep_Tool::Surface(face);
-    const double up = gs->IsUPeriodic() ? gs->UPeriod() : 0, vp = gs->IsVPeriodic() ? gs->VPeriod() : 0;
     TopTools_MapOfShape seen, twice;
     for (const auto& [l, w] : wires)
       for (TopoDS_Iterator it(w); it.More(); it.Next())
@@ -540,60 +534,9 @@ class Builder {
         double t0, t1;
         const Handle(Geom_Curve) c = BRep_Tool::Curve(e, t0, t1);
         if (c.IsNull() || !(t1 > t0)) continue;
-        if (Handle(Geom2d_Curve) pc = projected_pcurve(s, gs, c, t0, t1, up, vp, 0.5 * BRep_Tool::Tolerance(e)))
+        if (Handle(Geom2d_Curve) pc = projected_pcurve(s, gs, c, t0, t1, 0.5 * BRep_Tool::Tolerance(e)))
           bb_.UpdateEdge(e, pc, face, BRep_Tool::Tolerance(e));
       }
-  }
-
-  static Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_Surface)& gs,
-                                               const Handle(Geom_Curve)& c, double t0, double t1, double up, double vp,
-                                               double within) {
-    GeomAdaptor_Curve ad(c, t0, t1);
-    const int spans = ad.NbIntervals(GeomAbs_C2);
-    for (int n = std::clamp(4 * spans + 1, 9, 1025); n <= 1025; n = 2 * n - 1) {
-      Handle(TColgp_HArray1OfPnt2d) uv = new TColgp_HArray1OfPnt2d(1, n);
-      Handle(TColStd_HArray1OfReal) ts = new TColStd_HArray1OfReal(1, n);
-      for (int i = 0; i < n; ++i) {
-        const double t = i + 1 == n ? t1 : t0 + (t1 - t0) * i / (n - 1);
-        const gp_Pnt p = c->Value(t);
-        const geo::Vec2 q = geo::parameters(s, Vec3(p.X(), p.Y(), p.Z()));
-        gp_Pnt2d x(q.x(), q.y());
-        // Continued across the seam of a periodic surface, as the edge runs.
-        if (i > 0) {
-          const gp_Pnt2d& last = uv->Value(i);
-          if (up > 0) x.SetX(x.X() - up * std::round((x.X() - last.X()) / up));
-          if (vp > 0) x.SetY(x.Y() - vp * std::round((x.Y() - last.Y()) / vp));
-        }
-        gp_Pnt on;
-        gp_Vec du, dv;
-        gs->D1(x.X(), x.Y(), on, du, dv);
-        // Off the surface (the curve is not on it: ShapeFix says so its own way), or at a
-        // degenerate point.
-        if (on.Distance(p) > within || du.Crossed(dv).Magnitude() <= 1e-12 * du.Magnitude() * dv.Magnitude() ||
-            du.Magnitude() <= 1e-12 || dv.Magnitude() <= 1e-12)
-          return nullptr;
-        uv->SetValue(i + 1, x);
-        ts->SetValue(i + 1, t);
-      }
-      Handle(Geom2d_BSplineCurve) pc;
-      try {
-        Geom2dAPI_Interpolate interpolate(uv, ts, Standard_False, 1e-12);
-        interpolate.Perform();
-        if (!interpolate.IsDone()) return nullptr;
-        pc = interpolate.Curve();
-      } catch (const Standard_Failure&) {
-        return nullptr;
-      }
-      bool on = true;
-      for (int i = 0; i + 1 < n && on; ++i)
-        for (const double f : {0.25, 0.5, 0.75}) {
-          const double t = (1 - f) * ts->Value(i + 1) + f * ts->Value(i + 2);
-          const gp_Pnt2d x = pc->Value(t);
-          on = on && gs->Value(x.X(), x.Y()).Distance(c->Value(t)) <= within;
-        }
-      if (on) return pc;
-    }
-    return nullptr;
   }
 
   bool make_face(FaceH f, std::string* error) {

@@ -11,6 +11,7 @@
 #include "invariants/region_validity.h"
 #include "invariants/topology_check.h"
 #include "io/native_json.h"
+#include "io/occt/pcurve.h"
 #include "io/occt/exchange.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
@@ -24,6 +25,16 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Line.hxx>
+#include <gp.hxx>
+#include <gp_Ax2.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -219,6 +230,87 @@ TEST(FreeForm, ProjectionNeedsNoGridSearchAtCornersOrNearAnAxis) {
     EXPECT_NEAR(std::abs(foot.distance), 4.7, 1e-7) << "point " << k;
     EXPECT_EQ(geo::occt::projection_counts(fresh).value_of_uv, 0) << "point " << k;
   }
+}
+
+// The largest distance between curve c over [t0, t1] and the surface along pcurve pc.
+double pcurve_miss(const Handle(Geom_Surface)& gs, const Handle(Geom2d_Curve)& pc, const Handle(Geom_Curve)& c, double t0,
+                   double t1) {
+  double worst = 0;
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = t0 + (t1 - t0) * i / 2000;
+    const gp_Pnt2d uv = pc->Value(t);
+    worst = std::max(worst, gs->Value(uv.X(), uv.Y()).Distance(c->Value(t)));
+  }
+  return worst;
+}
+
+// The writer's pcurves on free-form faces (io/occt/pcurve.h) lie on their curves within
+// `within` everywhere, not only where they were checked, or are not made. A flat
+// B-spline sheet with a bump 1e-3 high across it at a quarter of the way between two of
+// the samples of a straight line along it: the line is not on the sheet, and no pcurve
+// is made for it (a check halfway between the samples alone made one; OpenCASCADE's
+// linkrods.step has such edges, 6e-4 off their B-spline face between samples). Beside
+// the bump, a line on the sheet gets one; so does a circle on a cylinder turned into a
+// rational B-spline (its parameter is not the circle's angle) and a line along a
+// surface of revolution whose meridian runs at an uneven speed.
+TEST(FreeForm, ProjectedPCurvesLieOnTheirCurves) {
+  geo::occt::register_freeform_backend();
+  const double within = 5e-8;
+  // Cubic in x over [0, 8] in 64 even spans, the poles at the Greville abscissae (so x is
+  // the parameter); linear in y over [-1, 1].
+  const int spans = 64, nu = spans + 3;
+  TColgp_Array2OfPnt poles(1, nu, 1, 2);
+  TColStd_Array1OfReal uknots(1, spans + 1), vknots(1, 2);
+  TColStd_Array1OfInteger umults(1, spans + 1), vmults(1, 2);
+  for (int k = 0; k <= spans; ++k) uknots(k + 1) = 8.0 * k / spans, umults(k + 1) = k == 0 || k == spans ? 4 : 1;
+  vknots(1) = -1, vknots(2) = 1, vmults(1) = vmults(2) = 2;
+  auto knot = [&](int i) { return 8.0 * std::clamp(i - 3, 0, spans) / spans; };  // the flat knot vector
+  for (int k = 0; k < nu; ++k) {
+    const double x = (knot(k + 1) + knot(k + 2) + knot(k + 3)) / 3;
+    // Pole 3's basis function lives on [0, 0.5] and peaks (2/3) at x = 0.25.
+    const double z = k == 3 ? 1.5e-3 : 0.0;
+    poles(k + 1, 1) = gp_Pnt(x, -1, z);
+    poles(k + 1, 2) = gp_Pnt(x, 1, z);
+  }
+  Handle(Geom_BSplineSurface) sheet = new Geom_BSplineSurface(poles, uknots, vknots, umults, vmults, 3, 1);
+  ASSERT_NEAR(sheet->Value(0.25, -1).Z(), 1e-3, 1e-9);
+  const geo::Surface ours = geo::occt::bspline_data(sheet);
+  Handle(Geom_Curve) line = new Geom_Line(gp_Pnt(0, -0.5, 0), gp_Dir(1, 0, 0));
+  // The writer's first sampling of a line is 9 points: 0, 1, ..., 8; the bump peaks at 0.25.
+  EXPECT_TRUE(io::occt::projected_pcurve(ours, sheet, line, 0.0, 8.0, within).IsNull());
+  const Handle(Geom2d_Curve) beside = io::occt::projected_pcurve(ours, sheet, line, 1.0, 8.0, within);
+  ASSERT_FALSE(beside.IsNull());
+  EXPECT_LE(pcurve_miss(sheet, beside, line, 1.0, 8.0), within);
+
+  Handle(Geom_Surface) quarter =
+      new Geom_RectangularTrimmedSurface(new Geom_CylindricalSurface(gp_Ax3(gp::XOY()), 5.0), 0.0, M_PI / 2, 0.0, 10.0);
+  const Handle(Geom_BSplineSurface) cylinder = GeomConvert::SurfaceToBSplineSurface(quarter);
+  // Its u is not the angle: a pcurve that is a line in the angle is not one in u.
+  const geo::Surface bcylinder = geo::occt::bspline_data(cylinder);
+  ASSERT_GT(std::abs(geo::parameters(bcylinder, geo::Vec3(5 * std::cos(0.7), 5 * std::sin(0.7), 3)).x() - 0.7), 1e-3);
+  Handle(Geom_Curve) circle = new Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 3), gp::DZ()), 5.0);
+  const Handle(Geom2d_Curve) around =
+      io::occt::projected_pcurve(bcylinder, cylinder, circle, 0.1, 1.4, within);
+  ASSERT_FALSE(around.IsNull());
+  EXPECT_LE(pcurve_miss(cylinder, around, circle, 0.1, 1.4), within);
+
+  TColgp_Array1OfPnt mpoles(1, 3);
+  mpoles(1) = gp_Pnt(2, 0, 0), mpoles(2) = gp_Pnt(2.5, 0, 2), mpoles(3) = gp_Pnt(3, 0, 4);
+  TColStd_Array1OfReal weights(1, 3), knots(1, 2);
+  weights(1) = 1, weights(2) = 6, weights(3) = 1;
+  knots(1) = 0, knots(2) = 1;
+  TColStd_Array1OfInteger mults(1, 2);
+  mults(1) = mults(2) = 3;
+  const geo::Surface turned =
+      geo::RevolutionSurface{geo::occt::bspline_data(new Geom_BSplineCurve(mpoles, weights, knots, mults, 2)),
+                             geo::Vec3::Zero(), geo::Vec3::UnitZ(), nullptr};
+  const Handle(Geom_Surface) gturned = geo::occt::geom_surface(turned);
+  // The meridian turned by 0.3 radians, as a line parameterised by length.
+  const gp_Pnt from(2 * std::cos(0.3), 2 * std::sin(0.3), 0), to(3 * std::cos(0.3), 3 * std::sin(0.3), 4);
+  Handle(Geom_Curve) meridian = new Geom_Line(from, gp_Dir(gp_Vec(from, to)));
+  const Handle(Geom2d_Curve) along = io::occt::projected_pcurve(turned, gturned, meridian, 0.0, from.Distance(to), within);
+  ASSERT_FALSE(along.IsNull());
+  EXPECT_LE(pcurve_miss(gturned, along, meridian, 0.0, from.Distance(to)), within);
 }
 
 TEST(FreeForm, PrismOnABSplineProfileIsReadExactly) {

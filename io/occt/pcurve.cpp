@@ -1,0 +1,70 @@
+#include "io/occt/pcurve.h"
+
+#include "geometry/surface.h"
+
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom2dAPI_Interpolate.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TColgp_HArray1OfPnt2d.hxx>
+#include <gp_Pnt2d.hxx>
+#include <gp_Vec.hxx>
+
+#include <algorithm>
+#include <cmath>
+
+namespace kintsugi::io::occt {
+
+Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
+                                     double t0, double t1, double within) {
+  const double up = gs->IsUPeriodic() ? gs->UPeriod() : 0, vp = gs->IsVPeriodic() ? gs->VPeriod() : 0;
+  GeomAdaptor_Curve ad(c, t0, t1);
+  const int spans = ad.NbIntervals(GeomAbs_C2);
+  for (int n = std::clamp(4 * spans + 1, 9, 1025); n <= 1025; n = 2 * n - 1) {
+    Handle(TColgp_HArray1OfPnt2d) uv = new TColgp_HArray1OfPnt2d(1, n);
+    Handle(TColStd_HArray1OfReal) ts = new TColStd_HArray1OfReal(1, n);
+    for (int i = 0; i < n; ++i) {
+      const double t = i + 1 == n ? t1 : t0 + (t1 - t0) * i / (n - 1);
+      const gp_Pnt p = c->Value(t);
+      const geo::Vec2 q = geo::parameters(s, geo::Vec3(p.X(), p.Y(), p.Z()));
+      gp_Pnt2d x(q.x(), q.y());
+      // Continued across the seam of a periodic surface, as the edge runs.
+      if (i > 0) {
+        const gp_Pnt2d& last = uv->Value(i);
+        if (up > 0) x.SetX(x.X() - up * std::round((x.X() - last.X()) / up));
+        if (vp > 0) x.SetY(x.Y() - vp * std::round((x.Y() - last.Y()) / vp));
+      }
+      gp_Pnt on;
+      gp_Vec du, dv;
+      gs->D1(x.X(), x.Y(), on, du, dv);
+      // Off the surface (the curve is not on it: ShapeFix says so its own way), or at a
+      // degenerate point.
+      if (on.Distance(p) > within || du.Crossed(dv).Magnitude() <= 1e-12 * du.Magnitude() * dv.Magnitude() ||
+          du.Magnitude() <= 1e-12 || dv.Magnitude() <= 1e-12)
+        return nullptr;
+      uv->SetValue(i + 1, x);
+      ts->SetValue(i + 1, t);
+    }
+    Handle(Geom2d_BSplineCurve) pc;
+    try {
+      Geom2dAPI_Interpolate interpolate(uv, ts, Standard_False, 1e-12);
+      interpolate.Perform();
+      if (!interpolate.IsDone()) return nullptr;
+      pc = interpolate.Curve();
+    } catch (const Standard_Failure&) {
+      return nullptr;
+    }
+    bool on = true;
+    for (int i = 0; i + 1 < n && on; ++i)
+      for (const double f : {0.25, 0.5, 0.75}) {
+        const double t = (1 - f) * ts->Value(i + 1) + f * ts->Value(i + 2);
+        const gp_Pnt2d x = pc->Value(t);
+        on = on && gs->Value(x.X(), x.Y()).Distance(c->Value(t)) <= within;
+      }
+    if (on) return pc;
+  }
+  return nullptr;
+}
+
+}  // namespace kintsugi::io::occt

@@ -1,0 +1,27 @@
+// The curve in a free-form face's parameter plane (pcurve) of an edge on it, by our own
+// projection, for the writer (to_occt.cpp). ShapeFix_Wire would project every sample by
+// ShapeAnalysis_Surface::ValueOfUV's grid search: measured, most of writing a B-spline
+// part (a second for OpenCASCADE's terrain.brep, one face).
+#pragma once
+
+#include "geometry/types.h"
+
+#include <Geom2d_Curve.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_Surface.hxx>
+
+namespace kintsugi::io::occt {
+
+// The pcurve of curve `c` over [t0, t1] on `s` (`gs`: the same surface as OpenCASCADE's
+// object), parameterised like `c`: the curve sampled (4 per C2 span, at least 9), each
+// sample projected (geo::parameters: Newton from the last foot) and continued across the
+// seam of a periodic surface, a 2D B-spline interpolated through them; kept when the
+// surface at the pcurve's point is within `within` of the curve's at a quarter, half and
+// three quarters of every interval between samples, else with twice the samples, up to
+// 1025. Null when a sample is farther than `within` from the surface (the curve is not on
+// it), at a degenerate point of it (|S_u x S_v| vanishing: a pole's parameters are not
+// the point's), or no sampling passes: the caller then leaves the edge to ShapeFix.
+Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
+                                     double t0, double t1, double within);
+
+}  // namespace kintsugi::io::occt
