@@ -44,7 +44,9 @@ cli::ToleranceChoice tolerance_for(const Model& m, std::optional<double> tol, st
 
 nlohmann::json beautify_timed(Model& m, std::optional<double> tol, const BeautifyOptions& options, std::string* note,
                               cli::BeautifyTimes& times, BeautifyDetail* detail = nullptr) {
+  const auto chosen = clock::now();
   cli::ToleranceChoice choice = tolerance_for(m, tol, note, /*suggest=*/true);
+  times.tolerance = seconds_since(chosen);
   kintsugi::BeautifyOptions o;
   o.check_topology_each_repair = options.check_topology_each_repair;
   if (detail) detail->before = m.body.clone();

@@ -46,7 +46,9 @@ nlohmann::json suggestion_json(const ToleranceSuggestion& s);
 // Wall-clock seconds of a beautify run's steps; read and write are 0 when the model did
 // not come from or go to a file in that run.
 struct BeautifyTimes {
-  double read = 0.0, beautify = 0.0, write = 0.0;
+  // tolerance: choosing the tolerance (the model's suggestion, when no --tol or
+  // meta.tolerance is given: it measures every face).
+  double read = 0.0, tolerance = 0.0, beautify = 0.0, write = 0.0;
 };
 nlohmann::json beautify_json(const BeautifyReport& r, const ToleranceChoice& tol, const std::string& units,
                              const BeautifyTimes& times);
