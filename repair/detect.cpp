@@ -158,6 +158,7 @@ void DetectContext::measure_ahead(int threads) {
             [&](std::size_t i) { length_dense_[edges[i].idx()] = kintsugi::edge_length(b, edges[i]); });
   std::vector<FaceH> faces;
   for (FaceH f : scope.faces) {
+    if (face_done_[f.idx()]) continue;  // known already (DetectContext::know)
     bool analytic = !geo::is_freeform(b.surface(f));
     for (LoopH l : b.loops_of(f))
       for (HalfedgeH h : b.loop_halfedges(l)) analytic = analytic && !geo::is_freeform(b.curve(edge_of(h)));
@@ -282,10 +283,8 @@ Detection detect(const Body& b, const geo::Tolerances& tol) {
   return run(c);
 }
 
-Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types) {
-  detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
-  detail::DetectContext c(b, tol, std::move(s), true);
-  c.measure_ahead(detect_threads());
+namespace {
+Detection detect_types_in(detail::DetectContext& c, const std::vector<ProblemType>& types) {
   std::vector<Problem> all, wanted;
   std::set<int> ran;
   for (ProblemType t : types)
@@ -293,6 +292,36 @@ Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vec
   for (Problem& p : all)
     if (std::find(types.begin(), types.end(), p.type) != types.end()) wanted.push_back(std::move(p));
   return in_order(std::move(wanted));
+}
+}  // namespace
+
+Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types) {
+  detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
+  detail::DetectContext c(b, tol, std::move(s), true);
+  c.measure_ahead(detect_threads());
+  return detect_types_in(c, types);
+}
+
+Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types,
+                       const std::vector<std::optional<AreaAndBounds>>& measured) {
+  detail::Scope s{b.faces(), b.edges(), b.vertices(), b.border_cycles()};
+  detail::DetectContext c(b, tol, std::move(s), true);
+  const double t = tol.length;
+  for (FaceH f : b.faces()) {
+    if (f.idx() >= measured.size()) continue;
+    detail::FaceInfo fi;
+    if (const std::optional<AreaAndBounds>& m = measured[f.idx()]) {
+      // As detail::measure_face decides.
+      fi.measured = true;
+      fi.area = m->area;
+      fi.bbox_diagonal = m->bounds.diagonal();
+      fi.small = m->area < t * t;
+      fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < t;
+    }
+    c.know(f, fi);
+  }
+  c.measure_ahead(detect_threads());
+  return detect_types_in(c, types);
 }
 
 void Neighbourhood::add_face(const Body& b, FaceH f, const std::vector<LoopH>* loops) {

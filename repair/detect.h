@@ -11,12 +11,14 @@
 #pragma once
 
 #include "geometry/tolerance.h"
+#include "invariants/element_geometry.h"
 #include "invariants/loop_index.h"
 #include "kernel/body.h"
 #include "problems/problem.h"
 #include "repair/touched.h"
 
 #include <array>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -34,6 +36,11 @@ Detection detect(const Body& b, const geo::Tolerances& tol);
 // detect's problems of the given types only, by running only the detectors that find them
 // (for callers that want a few types: the tolerance suggestion's probe).
 Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types);
+// The same, with faces already measured (area and bounding box, indexed by face slot;
+// nullopt: not measured, or not measurable) taken instead of measuring them again. The
+// measures must be at least as fine as detection's own (geo::Tolerances::measure_chordal).
+Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vector<ProblemType>& types,
+                       const std::vector<std::optional<AreaAndBounds>>& measured);
 
 // The neighbourhood of touched elements: the faces touched, on a touched edge or around
 // a touched vertex (the core); the edges and vertices of these faces, and the border

@@ -66,8 +66,10 @@ ToleranceSuggestion suggest_tolerance(const Body& b) {
     if (b.is_border(halfedge_of(e, 0)) || b.is_border(halfedge_of(e, 1))) continue;
     sizes.push_back({"edge " + e.str() + " (length)", edge_length(b, e)});
   }
+  // Kept for the probe below, which would measure every face again.
+  std::vector<std::optional<AreaAndBounds>> measured(b.face_slots());
   for (FaceH f : b.faces()) {
-    std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, kChordal * size);
+    std::optional<AreaAndBounds> m = measured[f.idx()] = face_area_and_bounds(b, f, kChordal * size);
     if (!m || !(m->area > 0)) continue;
     const double root = std::sqrt(m->area), width = m->area / std::max(m->bounds.diagonal(), 1e-300);
     sizes.push_back(width < root ? SizeEvidence{"face " + f.str() + " (width)", width}
@@ -76,8 +78,11 @@ ToleranceSuggestion suggest_tolerance(const Body& b) {
   }
   // Only the types whose sizes are no single element's (probe_size): the other
   // detectors would be run at the probe's large tolerance for nothing.
+  // The faces' measures above are finer than the probe's own (kChordal · size against
+  // Tolerances::measure_chordal, 1e-3 of the probe's 5% of the size).
+  static_assert(kChordal <= geo::Tolerances::kMeasureChordalRatio * kProbe);
   Detection d = detect_types(b, geo::Tolerances::for_model(probe, size),
-                             {ProblemType::pinched_face, ProblemType::same_geometry_faces});
+                             {ProblemType::pinched_face, ProblemType::same_geometry_faces}, measured);
   for (const Problem& p : d.problems) {
     const double x = probe_size(p);
     if (x < 0) continue;

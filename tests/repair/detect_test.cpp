@@ -520,6 +520,31 @@ TEST(Detect, DetectTypesIsDetectOfThoseTypes) {
   }
 }
 
+// Faces measured beforehand (the tolerance suggestion's, finer than detection's own) stand
+// in for detection's measures: the same problems are found, at the model's tolerance and
+// at the coarse ones where small faces and slivers keep faces out of the pinch and
+// same-geometry searches. Measures taken at the wrong tolerance's decision, or given to
+// the wrong faces, would change them.
+TEST(Detect, DetectTypesTakesFacesMeasuredBefore) {
+  std::vector<std::pair<std::string, zoo::ZooModel>> models;
+  models.emplace_back("family 1500", zoo::family(1500, 0.5, 3));
+  for (int n : {1, 4, 7, 10}) models.emplace_back("paper object " + std::to_string(n), zoo::paper_object(n, false));
+  const std::vector<ProblemType> types = {ProblemType::pinched_face, ProblemType::same_geometry_faces};
+  int telling = 0;  // cases where measures matter: faces given as unmeasurable change the result
+  for (auto& [name, m] : models) {
+    const double size = model_size(m.body);
+    std::vector<std::optional<AreaAndBounds>> measured(m.body.face_slots()), none(m.body.face_slots());
+    for (FaceH f : m.body.faces()) measured[f.idx()] = face_area_and_bounds(m.body, f, 1e-5 * size);
+    for (double t : {m.tolerance, 20 * m.tolerance, 0.05 * size}) {
+      const geo::Tolerances tol = tol_for(m.body, t);
+      const std::string alone = exact_listing(detect_types(m.body, tol, types));
+      EXPECT_EQ(exact_listing(detect_types(m.body, tol, types, measured)), alone) << name << " at " << t;
+      telling += exact_listing(detect_types(m.body, tol, types, none)) != alone;
+    }
+  }
+  EXPECT_GE(telling, 5);
+}
+
 }  // namespace
 }  // namespace kintsugi
 
