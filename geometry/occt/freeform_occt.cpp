@@ -164,10 +164,21 @@ SurfaceCache& surface_cache(const Surface& s) {
     auto c = std::make_shared<SurfaceCache>();
     c->surface = build(s);
     c->surface->Bounds(c->u0, c->u1, c->v0, c->v1);
-    c->adaptor.Load(c->surface);
     c->analysis = new ShapeAnalysis_Surface(c->surface);
     c->bounded = std::isfinite(c->u0) && std::isfinite(c->u1) && std::isfinite(c->v0) && std::isfinite(c->v1) &&
                  std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100;
+    // The adaptor evaluates a point exactly on one of its bounds by de Boor's algorithm
+    // (Geom_BSplineSurface::LocalD1, the span inside the bounds) rather than from its
+    // span cache, and projections clamped to the bounds land exactly there (boundary
+    // samples of every face that reaches a side of its surface): its bounds are put a
+    // hair outside the surface's, where nothing is evaluated. At the surface's own ends
+    // the cache's span is that same inside span.
+    if (c->bounded && c->u1 > c->u0 && c->v1 > c->v0) {
+      const double du = 1e-9 * (c->u1 - c->u0), dv = 1e-9 * (c->v1 - c->v0);
+      c->adaptor.Load(c->surface, c->u0 - du, c->u1 + du, c->v0 - dv, c->v1 + dv);
+    } else {
+      c->adaptor.Load(c->surface);
+    }
     if (c->bounded) {
       Bnd_Box box;
       BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
