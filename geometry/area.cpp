@@ -107,7 +107,7 @@ bool in_region(const ParameterDomain& d, const Vec2& p) {
 // otherwise each need thousands of pieces). Spacing: `step` for angles; for lengths on
 // cylinders and cones step × radius or a quarter of the length, whichever is larger
 // (below); none for planes, whose area element is constant. At most ~40000 points: coarser beyond that.
-void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step) {
+void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step, int freeform_grid) {
   if (std::holds_alternative<Plane>(s)) return;
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& poly : d.polygons)
@@ -119,11 +119,11 @@ void add_grid(CDT& cdt, const Surface& s, const ParameterDomain& d, double step)
   // only there to stop triangles fanning out, and a few do. (Spacing v like u made a long
   // thin fillet — a sliver — cost 40000 points, about a second per face.)
   if (!angular_v) hv = std::max(hv, (hi.y() - lo.y()) / 4);
-  // Free-form: no radius to scale by; a 16 x 16 grid over the region's parameter box
-  // keeps the triangles small where the area element varies.
+  // Free-form: no radius to scale by; a grid over the region's parameter box (16 x 16
+  // unless asked otherwise) keeps the triangles small where the area element varies.
   if (is_freeform(s)) {
-    hu = (hi.x() - lo.x()) / 16;
-    hv = (hi.y() - lo.y()) / 16;
+    hu = (hi.x() - lo.x()) / std::max(1, freeform_grid);
+    hv = (hi.y() - lo.y()) / std::max(1, freeform_grid);
     if (!(hu > 0) || !(hv > 0)) return;
   }
   if (!(hv > 0)) return;
@@ -239,7 +239,7 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
   // Spheres and ring tori in the fast mode: each domain triangle's area in closed form and
   // the bounds from the surface's extreme points (revolution_measure.h), so no grid either.
   const bool closed_form = fast && has_exact_triangle_area(s);
-  if (!ruled && !closed_form) add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05);
+  if (!ruled && !closed_form) add_grid(cdt, s, domain, o.max_angle_step > 0 ? o.max_angle_step : 0.05, o.freeform_grid);
   mark_domains(cdt);
 
   const Rule& rule = radon7();

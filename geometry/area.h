@@ -44,6 +44,12 @@ struct AreaOptions {
   // at a cone's apex, added when the region reaches it), so the region lies in the
   // boundary's convex hull.
   bool area_and_bounds_only = false;
+  // Free-form surfaces: the region's parameter box is split into this many cells a side
+  // for Steiner points (add_grid), so that the triangles are small where the area element
+  // varies. Detection's coarse pass, which only has to show a face far from small and
+  // thin by a wide margin (repair/detect.cpp), takes fewer.
+  int freeform_grid = kFreeformGrid;
+  static constexpr int kFreeformGrid = 16;
 };
 
 struct RegionMeasure {

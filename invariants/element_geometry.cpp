@@ -101,14 +101,15 @@ std::vector<geo::Vec3> surface_samples(const Body& b, FaceH f, double chordal) {
   return pts;
 }
 
-geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only) {
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only, int freeform_grid) {
   geo::AreaOptions o;
+  o.freeform_grid = freeform_grid;
   o.reversed = !b.same_sense(f);
   o.area_and_bounds_only = area_and_bounds_only;
   return geo::measure_region(b.surface(f), face_boundary(b, f, chordal), o);
 }
 
-std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal) {
+std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal, int freeform_grid) {
   if (const auto* plane = std::get_if<geo::Plane>(&b.surface(f))) {
     const geo::Vec3 outward = plane->frame.z.normalized() * (b.same_sense(f) ? 1.0 : -1.0);
     AreaAndBounds r{0.0, {}};
@@ -123,7 +124,7 @@ std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double
     }
     if (r.area > 0 && std::isfinite(r.area)) return r;
   }
-  geo::RegionMeasure m = face_measure(b, f, chordal, /*area_and_bounds_only=*/true);
+  geo::RegionMeasure m = face_measure(b, f, chordal, /*area_and_bounds_only=*/true, freeform_grid);
   if (!m.ok()) return std::nullopt;
   return AreaAndBounds{m.area, m.bounds};
 }

@@ -36,7 +36,8 @@ std::vector<geo::Vec3> surface_samples(const Body& b, FaceH f, double chordal);
 // Area, centroid, bounding box and tessellation of a face; `problem` says why not. With
 // `area_and_bounds_only`, no tessellation or centroid (geo::AreaOptions says how that
 // is cheaper).
-geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only = false);
+geo::RegionMeasure face_measure(const Body& b, FaceH f, double chordal, bool area_and_bounds_only = false,
+                                int freeform_grid = geo::AreaOptions::kFreeformGrid);
 // Only the area and bounding box: for a planar face, from its boundary polylines alone
 // (the signed areas of its loops about its outward normal; no triangulation, which is
 // what makes measuring a large model costly); otherwise face_measure's area and bounds
@@ -46,7 +47,9 @@ struct AreaAndBounds {
   double area;
   geo::Box bounds;
 };
-std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal);
+// `freeform_grid`: geo::AreaOptions::freeform_grid.
+std::optional<AreaAndBounds> face_area_and_bounds(const Body& b, FaceH f, double chordal,
+                                                  int freeform_grid = geo::AreaOptions::kFreeformGrid);
 double vertex_edge_distance(const Body& b, VertexH v, EdgeH e, double chordal);
 double edge_edge_distance(const Body& b, EdgeH e1, EdgeH e2, double chordal);
 // Bounding box of the vertices, the sampled edges and the faces that bulge beyond their
