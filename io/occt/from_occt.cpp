@@ -25,7 +25,9 @@
 #include <Geom2d_Curve.hxx>
 #include <Geom2d_Line.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
+#include <Extrema_GenLocateExtPS.hxx>
 #include <GeomAdaptor_Curve.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
 #include <GeomLib_IsPlanarSurface.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -377,8 +379,22 @@ std::optional<geo::Curve> straight_curve(const TopoDS_Edge& forward, const Handl
   for (const TopoDS_Face& face : faces) {
     Handle(Geom_Surface) s = BRep_Tool::Surface(face);
     if (s.IsNull() || !Handle(Geom_Plane)::DownCast(s).IsNull()) continue;
+    // A point of the surface within 1e-7 of the line's point is looked for first near the
+    // edge's own pcurve (a local search from its point there): finding one settles it.
+    // Only otherwise the global projection (on a B-spline face a grid search: measured,
+    // a seventh of reading bearing.iges when done for every point).
+    double a = 0, b = 0;
+    const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(forward, face, a, b);
+    const GeomAdaptor_Surface adaptor(s);
     for (double w : {0.25, 0.5, 0.75}) {
-      GeomAPI_ProjectPointOnSurf on(p0.Translated(w * gp_Vec(p0, p1)), s);
+      const gp_Pnt q = p0.Translated(w * gp_Vec(p0, p1));
+      if (!pc.IsNull()) {
+        const gp_Pnt2d guess = pc->Value(a + w * (b - a));
+        Extrema_GenLocateExtPS near(adaptor);
+        near.Perform(q, guess.X(), guess.Y(), Standard_True);
+        if (near.IsDone() && near.SquareDistance() <= 1e-14) continue;
+      }
+      GeomAPI_ProjectPointOnSurf on(q, s);
       if (on.NbPoints() == 0 || on.LowerDistance() > 1e-7) return std::nullopt;
     }
   }
