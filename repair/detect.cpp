@@ -82,21 +82,29 @@ CoarseStep coarse_step(const Body& b, FaceH f, const geo::Tolerances& tol, Lengt
 
 FaceInfo DetectContext::measure(FaceH f) const {
   const auto [coarse, perimeter] = coarse_step(b, f, tol, [&](EdgeH e) { return edge_length(e); });
-  if (coarse > chordal && std::isfinite(coarse)) {
-    std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, coarse, kCoarseFreeformGrid);
-    if (m) {
-      const double e = coarse + chordal;
-      const double area_lo = m->area - 4 * perimeter * e;
-      const double diagonal_hi = m->bounds.diagonal() + 4 * e;
-      const double t = tol.length;
-      if (std::isfinite(area_lo) && area_lo >= t * t && area_lo >= t * diagonal_hi) {
-        FaceInfo fi;
-        fi.measured = true;
-        fi.area = m->area;
-        fi.bbox_diagonal = m->bounds.diagonal();
-        return fi;
-      }
+  // The coarse step, then a tenth and a hundredth of it, while above the fine step: a
+  // face far larger than the tolerance whose bound the coarse step leaves too wide (a
+  // long strip or a ring: P²/100 above its area) is shown ordinary by a step between
+  // rather than measured at the fine step, which on a face 10⁴ times the fine step across
+  // costs a hundred times the points. A small face or sliver reaches the fine step after
+  // at most two cheap tries.
+  double step = coarse;
+  for (int tries = 0; tries < 3 && step > chordal && std::isfinite(step); ++tries, step /= 10) {
+    std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, step, kCoarseFreeformGrid);
+    if (!m) break;
+    const double e = step + chordal;
+    const double area_lo = m->area - 4 * perimeter * e;
+    const double diagonal_hi = m->bounds.diagonal() + 4 * e;
+    const double t = tol.length;
+    if (std::isfinite(area_lo) && area_lo >= t * t && area_lo >= t * diagonal_hi) {
+      FaceInfo fi;
+      fi.measured = true;
+      fi.area = m->area;
+      fi.bbox_diagonal = m->bounds.diagonal();
+      return fi;
     }
+    // Too narrow for any coarser step to show it ordinary: straight to the fine one.
+    if (!(m->area >= t * t && m->area >= t * m->bounds.diagonal())) break;
   }
   return measure_face(b, f, tol, chordal);
 }
