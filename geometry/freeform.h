@@ -34,6 +34,11 @@ struct FreeformBackend {
   // Intersection curves of two surfaces (any of them free-form) near `near`: each as a
   // B-spline curve (or an analytic curve where OpenCASCADE gives one).
   std::vector<Curve> (*intersect)(const Surface& a, const Surface& b, double precision);
+  // Forgets the last projection's foot on s (the next projection searches afresh): where
+  // several parameters give one point (a pole), which one a projection returns depends on
+  // where it starts, and a face's parameter domain must not depend on what was projected
+  // before it (geo::parameter_domain calls this first).
+  void (*surface_forget)(const Surface& s);
 };
 
 // nullptr unregisters.

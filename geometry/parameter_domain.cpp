@@ -1,6 +1,7 @@
 #include "geometry/parameter_domain.h"
 
 #include "geometry/frame.h"
+#include "geometry/freeform.h"
 #include "geometry/surface.h"
 
 #include <algorithm>
@@ -179,6 +180,7 @@ ParameterDomain parameter_domain(const Surface& s, const std::vector<std::vector
     d.problem = p;
     return d;
   }
+  if (is_freeform(s)) require_freeform().surface_forget(s);
   const bool closed = std::holds_alternative<Sphere>(s) || std::holds_alternative<Torus>(s);
   auto full_rectangle = [&](const Vec2& c) {
     const double hv = std::holds_alternative<Sphere>(s) ? kPi / 2 : kPi;

@@ -512,8 +512,15 @@ std::vector<Curve> intersect(const Surface& a, const Surface& b, double precisio
   return out;
 }
 
-const FreeformBackend kBackend{surface_d1,  surface_project, surface_bounds, surface_problem, curve_d1,   curve_project,
-                               curve_bounds, curve_length,    curve_sample,   curve_problem,   intersect};
+void surface_forget(const Surface& s) {
+  SurfaceCache& c = surface_cache(s);
+  std::lock_guard<std::mutex> lock(c.m);
+  c.has_last = false;
+}
+
+const FreeformBackend kBackend{surface_d1,   surface_project, surface_bounds, surface_problem, curve_d1,
+                               curve_project, curve_bounds,   curve_length,   curve_sample,    curve_problem,
+                               intersect,     surface_forget};
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include "io/occt/exchange.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
+#include "repair/detect_threads.h"
 #include "repair/suggest_tolerance.h"
 #include "tests/occt/compare.h"
 
@@ -103,6 +104,15 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
   // The tolerance the part suggests, else the default.
   const double size = model_size(b);
   ToleranceSuggestion s = suggest_tolerance(b);
+  {
+    // The suggestion measures faces on several threads (one per free-form surface's
+    // evaluation state): the same suggestion, to the last digit, on one.
+    set_detect_threads(1);
+    const ToleranceSuggestion one = suggest_tolerance(b);
+    set_detect_threads(0);
+    EXPECT_EQ(one.tolerance, s.tolerance);
+    EXPECT_EQ(one.explanation, s.explanation);
+  }
   const double length = s.trusted() ? s.tolerance : 1e-3 * size;
   const geo::Tolerances tol = geo::Tolerances::for_model(length, size);
   std::ostringstream ts;
