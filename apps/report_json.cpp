@@ -129,7 +129,10 @@ nlohmann::json beautify_json(const BeautifyReport& r, const ToleranceChoice& tol
   for (const Problem& p : r.left) j["left"].push_back({{"type", problem_name(p.type)}, {"elements", element_names(p)}});
   j["max_deviation"] = r.max_deviation;
   j["max_deviation_elements"] = r.max_elements;
-  j["seconds"] = {{"read", times.read}, {"tolerance", times.tolerance}, {"beautify", times.beautify}, {"write", times.write},
+  j["seconds"] = {{"read", times.read},
+                  {"tolerance", times.tolerance},
+                  {"beautify", times.beautify},
+                  {"write", times.write},
                   {"passes", nlohmann::json::object()}};
   for (ProblemType t : kAllProblemTypes) j["seconds"]["passes"][problem_name(t)] = r.seconds[std::size_t(problem_order(t) - 1)];
   return j;

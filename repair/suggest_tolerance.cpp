@@ -1,8 +1,8 @@
 #include "repair/suggest_tolerance.h"
 
+#include "geometry/freeform.h"
 #include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
-#include "geometry/freeform.h"
 #include "repair/detect.h"
 #include "repair/detect_threads.h"
 

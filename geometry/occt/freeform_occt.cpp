@@ -224,7 +224,8 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
 // off a curved surface the full step can overshoot the foot back and forth for ever).
 // Converged when a step moves the point by less than a billionth of near_enough, or no
 // step brings it nearer; `*uv` is then the last point and the result its distance to the
-// target (infinity when it did not converge). `*tangential` is the residual's largest
+// target (infinity when it did not converge within 100 steps; from the fourth on, the
+// step is Newton's with the surface's curvature, below). `*tangential` is the residual's largest
 // share along a tangent, relative to the tangent's length, leaving out a tangent along
 // which the point is held at a bound with the residual pointing out of the bounds (there
 // the point is the nearest within the bounds, as it should be).
@@ -338,7 +339,10 @@ bool seeded_foot(SurfaceCache& c, const gp_Pnt& target, gp_Pnt2d* uv) {
   for (const auto& [ignored, k] : starts) {
     gp_Pnt2d q;
     const double dist = newton(c, target, c.seed_uv[k].X(), c.seed_uv[k].Y(), &q, &tangential);
-    if (dist < best && tangential <= 1e-6 * dist + 1e-9 * c.near_enough + 1e-2 * Precision::Confusion()) best = dist, *uv = q, found = true;
+    // Tangentially within a hundredth of the modelling precision counts as a foot:
+    // ValueOfUV, the alternative, answers to the precision itself.
+    const double slack = 1e-6 * dist + 1e-9 * c.near_enough + 1e-2 * Precision::Confusion();
+    if (dist < best && tangential <= slack) best = dist, *uv = q, found = true;
   }
   return found;
 }
