@@ -25,7 +25,6 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepTools.hxx>
-#include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Line.hxx>
@@ -33,8 +32,6 @@
 #include <gp_Ax2.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -133,19 +130,25 @@ TEST(FreeForm, FollowedFootGivesTheGlobalDistance) {
   EXPECT_EQ(compared, 61);
 }
 
+// A B-spline through a 12 x 12 grid of the waves z = 0.8 sin x cos 0.7y over [0, 10]²,
+// x moved by `shear` · y (so that S_u and S_v are not orthogonal when it is not 0).
+Handle(Geom_BSplineSurface) wavy_patch(double shear) {
+  TColgp_Array2OfPnt pts(1, 12, 1, 12);
+  for (int i = 1; i <= 12; ++i)
+    for (int j = 1; j <= 12; ++j) {
+      const double x = (i - 1) * 10.0 / 11, y = (j - 1) * 10.0 / 11;
+      pts(i, j) = gp_Pnt(x + shear * y, y, 0.8 * std::sin(x) * std::cos(0.7 * y));
+    }
+  return GeomAPI_PointsToBSplineSurface(pts).Surface();
+}
+
 // A projection with no last foot to follow starts from a seed grid's local minima
 // (geometry/occt/freeform_occt.cpp): on a wavy B-spline patch, for points on both sides of
 // it, the nearest point found is never farther than OpenCASCADE's exhaustive extremum
 // search finds, nor than the point's own offset along the normal.
 TEST(FreeForm, ProjectionFindsTheGlobalFoot) {
   geo::occt::register_freeform_backend();
-  TColgp_Array2OfPnt pts(1, 12, 1, 12);
-  for (int i = 1; i <= 12; ++i)
-    for (int j = 1; j <= 12; ++j) {
-      const double x = (i - 1) * 10.0 / 11, y = (j - 1) * 10.0 / 11;
-      pts(i, j) = gp_Pnt(x, y, 0.8 * std::sin(x) * std::cos(0.7 * y));
-    }
-  Handle(Geom_BSplineSurface) patch = GeomAPI_PointsToBSplineSurface(pts).Surface();
+  Handle(Geom_BSplineSurface) patch = wavy_patch(0.0);
   const geo::Surface s = geo::occt::bspline_data(patch);
   double u0, u1, v0, v1;
   patch->Bounds(u0, u1, v0, v1);
@@ -177,13 +180,7 @@ TEST(FreeForm, ProjectionFindsTheGlobalFoot) {
 // step. Both are now answered by the search itself, exactly.
 TEST(FreeForm, ProjectionNeedsNoGridSearchAtCornersOrNearAnAxis) {
   geo::occt::register_freeform_backend();
-  TColgp_Array2OfPnt pts(1, 12, 1, 12);
-  for (int i = 1; i <= 12; ++i)
-    for (int j = 1; j <= 12; ++j) {
-      const double x = (i - 1) * 10.0 / 11, y = (j - 1) * 10.0 / 11;
-      pts(i, j) = gp_Pnt(x + 0.6 * y, y, 0.8 * std::sin(x) * std::cos(0.7 * y));  // sheared: S_u . S_v != 0
-    }
-  Handle(Geom_BSplineSurface) patch = GeomAPI_PointsToBSplineSurface(pts).Surface();
+  Handle(Geom_BSplineSurface) patch = wavy_patch(0.6);  // sheared: S_u . S_v != 0
   double u0, u1, v0, v1;
   patch->Bounds(u0, u1, v0, v1);
   int corners = 0;
