@@ -13,16 +13,20 @@
 namespace kintsugi::io::occt {
 
 // The pcurve of curve `c` over [t0, t1] on `s` (`gs`: the same surface as OpenCASCADE's
-// object), parameterised like `c`, for a curve that lies on the surface. The curve is
-// sampled (4 per C2 span, at least 9), each sample projected (geo::parameters: Newton
-// from the last foot) and continued across the seam of a periodic surface, and a 2D
-// B-spline interpolated through them; kept when, at a quarter, half and three quarters
-// of every interval between samples, the surface at the pcurve's point is within
-// `within` of the foot of the curve's point, else made again with twice the samples, up
-// to 1025. Null when a sample is farther than `within` from the surface (the curve is not
-// on it), a foot is at a degenerate point of the surface (|S_u x S_v| vanishing: a
-// pole's parameters are not the point's), or no sampling passes: the caller then leaves
-// the edge to ShapeFix.
+// object), parameterised like `c`. The curve is sampled (4 per C2 span, at least 9), each
+// sample projected (geo::parameters: Newton from the last foot) and continued across the
+// seam of a periodic surface, and a 2D B-spline interpolated through them; kept when, at
+// a quarter, half and three quarters of every interval between samples, the surface at
+// the pcurve's point is near enough the foot of the curve's point, else made again with
+// twice the samples, up to 1025. Near enough is `within` for a curve on the surface (every
+// sample within `within` of it) and the curve's own distance for one clearly off it (a
+// sample farther than 4 `within`, twice the edge's tolerance when `within` is half of it):
+// BRepCheck reports such an edge off its face whatever its pcurve, and feet held at a
+// bound of the domain turn where the curve leaves it, a corner no sampling follows to
+// `within`. Null for a curve near the surface but not on it (ShapeFix's pcurve can pass
+// where the curve's own miss leaves the feet's no room), a foot at a degenerate point of
+// the surface (|S_u x S_v| vanishing: a pole's parameters are not the point's), or no
+// sampling passing: the caller then leaves the edge to ShapeFix.
 Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
                                      double t0, double t1, double within);
 

@@ -249,8 +249,9 @@ double pcurve_miss(const geo::Surface& s, const Handle(Geom_Surface)& gs, const 
 // B-spline sheet whose parameter runs unevenly for a stretch a quarter of the way between
 // two of the samples of a straight line along it: a check halfway between the samples
 // alone let a pcurve 7e-4 off through (on OpenCASCADE's linkrods.step such pcurves made
-// BRepCheck call three edges off their faces). The same line 1e-3 above the sheet is
-// left to ShapeFix. A circle on a cylinder turned into
+// BRepCheck call three edges off their faces). The same line a little above the sheet is
+// left to ShapeFix; 1e-3 above and starting past its bound, the feet's pcurve follows them
+// as near as the line is to the sheet. A circle on a cylinder turned into
 // a rational B-spline (its parameter is not the circle's angle) and a line along a
 // surface of revolution whose meridian runs at an uneven speed get exact ones.
 TEST(FreeForm, ProjectedPCurvesLieOnTheirCurves) {
@@ -280,8 +281,17 @@ TEST(FreeForm, ProjectedPCurvesLieOnTheirCurves) {
   const Handle(Geom2d_Curve) along = io::occt::projected_pcurve(ours, sheet, line, 0.0, 8.0, within);
   ASSERT_FALSE(along.IsNull());
   EXPECT_LE(pcurve_miss(ours, sheet, along, line, 0.0, 8.0), within);
-  Handle(Geom_Curve) above = new Geom_Line(gp_Pnt(0, -0.5, 1e-3), gp_Dir(1, 0, 0));
-  EXPECT_TRUE(io::occt::projected_pcurve(ours, sheet, above, 0.0, 8.0, within).IsNull());
+  // Near the sheet but not on it: ShapeFix's.
+  Handle(Geom_Curve) near = new Geom_Line(gp_Pnt(0, -0.5, 3 * within), gp_Dir(1, 0, 0));
+  EXPECT_TRUE(io::occt::projected_pcurve(ours, sheet, near, 0.0, 8.0, within).IsNull());
+  // Clearly off (1e-3 above), and running 2e-3 past the sheet's bound x = 0, where its
+  // feet stay on the bound: the pcurve follows the feet as near as the line is to the
+  // sheet (its corner at x = 0 is 2e-3 after the line's start, closer than 8 / 1024).
+  Handle(Geom_Curve) above = new Geom_Line(gp_Pnt(-2e-3, -0.5, 1e-3), gp_Dir(1, 0, 0));
+  const Handle(Geom2d_Curve) over = io::occt::projected_pcurve(ours, sheet, above, 0.0, 8.002, within);
+  ASSERT_FALSE(over.IsNull());
+  EXPECT_LE(pcurve_miss(ours, sheet, over, above, 0.0, 8.002), std::hypot(2e-3, 1e-3));
+  EXPECT_NEAR(over->Value(0.0).X(), 0.0, 1e-12);
 
   Handle(Geom_Surface) quarter =
       new Geom_RectangularTrimmedSurface(new Geom_CylindricalSurface(gp_Ax3(gp::XOY()), 5.0), 0.0, M_PI / 2, 0.0, 10.0);
