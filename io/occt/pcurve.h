@@ -15,10 +15,14 @@ namespace kintsugi::io::occt {
 // The pcurve of curve `c` over [t0, t1] on `s` (`gs`: the same surface as OpenCASCADE's
 // object), parameterised like `c`. The curve is sampled (4 per C2 span, at least 9), each
 // sample projected (geo::parameters: Newton from the last foot) and continued across the
-// seam of a periodic surface, and a 2D B-spline interpolated through them; kept when, at
-// a quarter, half and three quarters of every interval between samples, the surface at
-// the pcurve's point is near enough the foot of the curve's point, else made again with
-// twice the samples, up to 1025. Near enough is `within` for a curve on the surface (every
+// seam of a periodic surface. It is cut where it is less smooth (the bounds of its C2
+// spans) and where its feet cross a parameter line along which the surface is (a double
+// knot of a bicubic B-spline; found by a secant search between samples), and a 2D
+// B-spline interpolated through the samples of each piece; a piece is kept when, at a
+// quarter, half and three quarters of every interval between samples, the surface at the
+// pcurve's point is near enough the foot of the curve's point, else made again with
+// twice the samples, up to 1025 (4100 over all pieces). The pieces are joined with a
+// knot of multiplicity 3 where they meet. Near enough is `within` for a curve on the surface (every
 // sample within `within` of it) and the curve's own distance for one clearly off it (a
 // sample farther than 4 `within`, twice the edge's tolerance when `within` is half of it):
 // BRepCheck reports such an edge off its face whatever its pcurve, and feet held at a
