@@ -82,14 +82,16 @@ CoarseStep coarse_step(const Body& b, FaceH f, const geo::Tolerances& tol, Lengt
 
 FaceInfo DetectContext::measure(FaceH f) const {
   const auto [coarse, perimeter] = coarse_step(b, f, tol, [&](EdgeH e) { return edge_length(e); });
-  // The coarse step, then a tenth and a hundredth of it, while above the fine step: a
-  // face far larger than the tolerance whose bound the coarse step leaves too wide (a
+  // The coarse step, then a tenth of it, and a tenth of that, while above the fine step:
+  // a face far larger than the tolerance whose bound the coarse step leaves too wide (a
   // long strip or a ring: P²/100 above its area) is shown ordinary by a step between
   // rather than measured at the fine step, which on a face 10⁴ times the fine step across
-  // costs a hundred times the points. A small face or sliver reaches the fine step after
-  // at most two cheap tries.
+  // costs a hundred times the points (OpenCASCADE's Bottom.brep: an 83-mm strip 2.3
+  // tolerances wide, shown ordinary at a thousandth of the coarse step, cost a fifth of
+  // its detection at the fine one). A face shown small or a sliver at a step goes to the
+  // fine step from there.
   double step = coarse;
-  for (int tries = 0; tries < 3 && step > chordal && std::isfinite(step); ++tries, step /= 10) {
+  for (; step > chordal && std::isfinite(step); step /= 10) {
     std::optional<AreaAndBounds> m = face_area_and_bounds(b, f, step, kCoarseFreeformGrid);
     if (!m) break;
     const double e = step + chordal;
@@ -103,8 +105,13 @@ FaceInfo DetectContext::measure(FaceH f) const {
       fi.bbox_diagonal = m->bounds.diagonal();
       return fi;
     }
-    // Too narrow for any coarser step to show it ordinary: straight to the fine one.
-    if (!(m->area >= t * t && m->area >= t * m->bounds.diagonal())) break;
+    // Small or a sliver whatever the step (the measure's upper bound fails): straight to
+    // the fine step, which measures it for the report. Not on the raw measure: a coarse
+    // step can lose nearly all of a strip's area (that strip of Bottom.brep measured
+    // 3e-12 mm² at its coarse step).
+    const double area_hi = m->area + 4 * perimeter * e;
+    const double diagonal_lo = std::max(0.0, m->bounds.diagonal() - 4 * e);
+    if (!(area_hi >= t * t && area_hi >= t * diagonal_lo)) break;
   }
   return measure_face(b, f, tol, chordal);
 }
