@@ -260,7 +260,13 @@ SurfacePoint closest_point(const Surface& s, const Vec3& p) {
 }
 
 double signed_distance(const Surface& s, const Vec3& p) { return closest_point(s, p).distance; }
-Vec2 parameters(const Surface& s, const Vec3& p) { return closest_point(s, p).uv; }
+Vec2 parameters(const Surface& s, const Vec3& p) {
+  // A free-form surface's parameters straight from the backend's projection, without the
+  // point and normal closest_point evaluates there (a quarter of a projection's time;
+  // the writer's pcurves and the measures of free-form faces ask for millions).
+  if (is_freeform(s)) return require_freeform().surface_project(s, p);
+  return closest_point(s, p).uv;
+}
 
 // A surface of revolution's u is its angle. B-spline periods are knot spans, not 2π:
 // B-spline surfaces count as not periodic here (a face across a periodic B-spline's seam

@@ -13,6 +13,25 @@
 #include <variant>
 
 namespace kintsugi::detail {
+namespace {
+
+// The box of a side for the pinch search's filter: sampled at `coarse` (a share of the
+// tolerance) and widened by twice that, it holds the curve, and so the finer polyline
+// whose distances decide, from a fraction of the points (sampling every curved side at
+// detection's fine step was a sixth of Bottom.brep's detection). Lines and circles get
+// their exact boxes.
+geo::Box side_box(const Body& b, HalfedgeH h, double coarse) {
+  geo::Box box = halfedge_box(b, h, coarse);
+  const geo::Curve& c = b.curve(edge_of(h));
+  if (!std::holds_alternative<std::monostate>(c) && !std::holds_alternative<geo::Line>(c) &&
+      !std::holds_alternative<geo::Circle>(c)) {
+    box.min.array() -= 2 * coarse;
+    box.max.array() += 2 * coarse;
+  }
+  return box;
+}
+
+}  // namespace
 
 void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
   const Body& b = c.b;
@@ -180,6 +199,7 @@ std::vector<std::vector<std::size_t>> occurrences(const Body& b, const std::vect
 void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const FaceH> faces) {
   const Body& b = c.b;
   const double t = c.tol.length;
+  constexpr double kBoxChordalShare = 0.25;  // of the tolerance: side_box's sampling
   struct Side {
     std::size_t loop, pos;
     HalfedgeH h;
@@ -214,7 +234,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
       b.for_each_halfedge(l, [&](HalfedgeH h) {
         prefix.push_back(prefix.back() + len(h));
         sides.push_back({loop, i++, h});
-        boxes.push_back(gap_side(h) ? geo::Box{} : halfedge_box(b, h, c.chordal));
+        boxes.push_back(gap_side(h) ? geo::Box{} : side_box(b, h, std::max(c.chordal, kBoxChordalShare * t)));
       });
     }
     loop_start.push_back(prefix.size());
