@@ -4,6 +4,7 @@
 
 #include "invariants/element_geometry.h"
 #include "repair/detect_detail.h"
+#include "repair/freeform_groups.h"
 #include "repair/detect_threads.h"
 
 #include <algorithm>
@@ -188,6 +189,7 @@ void DetectContext::measure_ahead(int threads) {
     if (analytic) faces.push_back(f);
     all_analytic = all_analytic && analytic;
   }
+  measure_freeform_ahead(threads);
   if (faces.size() < kMinElements) return;
   in_blocks(faces.size(), threads, [&](std::size_t i) {
     face_dense_[faces[i].idx()] = measure(faces[i]);
@@ -197,6 +199,30 @@ void DetectContext::measure_ahead(int threads) {
   // across the scope's edges too, which a whole-body scope holds): from here on the
   // context is only read.
   if (all_analytic) detector_threads_ = threads;
+}
+
+void DetectContext::measure_freeform_ahead(int threads) {
+  // Groups below this many are measured as the detectors ask (a thread costs more).
+  constexpr std::size_t kMinGroups = 32;
+  std::vector<FaceH> faces;
+  for (FaceH f : scope.faces) {
+    if (face_done_[f.idx()]) continue;
+    bool freeform = geo::is_freeform(b.surface(f));
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) freeform = freeform || geo::is_freeform(b.curve(edge_of(h)));
+    if (freeform) faces.push_back(f);
+  }
+  const std::vector<std::vector<FaceH>> groups = evaluation_groups(b, faces);
+  if (groups.size() < kMinGroups) return;
+  prepare_freeform(b, faces);
+  // Every edge length the measures read, first (they are cached as read).
+  for (FaceH f : faces)
+    for (LoopH l : b.loops_of(f))
+      for (HalfedgeH h : b.loop_halfedges(l)) (void)edge_length(edge_of(h));
+  for_each_grouped(groups, threads, [&](FaceH f) {
+    face_dense_[f.idx()] = measure(f);
+    face_done_[f.idx()] = 1;
+  });
 }
 
 }  // namespace detail

@@ -76,10 +76,11 @@ class DetectContext {
   void know(FaceH f, const FaceInfo& fi);
   double edge_length(EdgeH e) const;       // measured on first use
   Marks marks_faces() const { return Marks(b.face_slots(), whole); }
-  // A whole-body detection's measures taken ahead on `threads` threads: every edge's
-  // length, then every face's measure, where the face and its edges have analytic
-  // geometry (free-form evaluation keeps per-surface state: those are measured when
-  // first asked, as before). The answers are the ones face() and edge_length() would give.
+  // A whole-body detection's measures taken ahead on `threads` threads: every analytic
+  // edge's length, then every face's measure where the face and its edges have analytic
+  // geometry, and the faces with free-form geometry by evaluation group (free-form
+  // evaluation keeps per-surface state: repair/freeform_groups.h) when there are enough
+  // groups. The answers are the ones face() and edge_length() would give.
   void measure_ahead(int threads);
   // How many threads the detectors may share after measure_ahead: more than one only
   // when it measured every face and edge of the scope (then face() and edge_length()
@@ -89,6 +90,7 @@ class DetectContext {
 
  private:
   FaceInfo measure(FaceH f) const;  // coarse first, finely where that cannot decide
+  void measure_freeform_ahead(int threads);  // measure_ahead's faces with free-form geometry
 
   int detector_threads_ = 1;
   mutable std::vector<FaceInfo> face_dense_;

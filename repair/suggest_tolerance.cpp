@@ -1,18 +1,14 @@
 #include "repair/suggest_tolerance.h"
 
-#include "geometry/freeform.h"
 #include "geometry/tolerance.h"
 #include "invariants/element_geometry.h"
 #include "repair/detect.h"
 #include "repair/detect_threads.h"
+#include "repair/freeform_groups.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <sstream>
-#include <thread>
-#include <unordered_map>
-#include <variant>
 
 namespace kintsugi {
 
@@ -31,6 +27,8 @@ constexpr double kChordal = 1e-5;
 constexpr double kWide = 10;
 // How many sizes either side are kept as evidence.
 constexpr std::size_t kEvidence = 5;
+// Faces are measured on threads from this many groups (repair/freeform_groups.h).
+constexpr std::size_t kMinGroupsForThreads = 32;
 
 std::string fmt(double d) {
   std::ostringstream os;
@@ -48,57 +46,16 @@ double probe_size(const Problem& p) {
   return p.type == ProblemType::pinched_face || p.type == ProblemType::same_geometry_faces ? p.measure : -1;
 }
 
-// What identifies a free-form surface's evaluation state (geometry/occt/freeform_occt.cpp
-// keeps it in the surface's `cache`, shared by copies): the cache, or the object until it
-// has one; nullptr for an analytic surface.
-const void* freeform_state(const geo::Surface& s) {
-  return std::visit(
-      [](const auto& x) -> const void* {
-        if constexpr (requires { x.cache; })
-          return x.cache ? x.cache.get() : static_cast<const void*>(&x);
-        else
-          return nullptr;
-      },
-      s);
-}
-
 // Every face's area and bounds (by face slot), on the threads detection may use
-// (detect_threads). A projection onto a free-form surface starts from the last one's foot
-// on that surface, so the faces sharing one free-form surface's state are measured by one
-// thread in face order: the measures do not depend on the threads. The free-form
-// geometry's caches are built first, on this thread (they are made on first use, which
-// is not thread-safe).
+// (detect_threads), grouped by free-form evaluation state (repair/freeform_groups.h).
 std::vector<std::optional<AreaAndBounds>> measure_faces(const Body& b, double chordal) {
   std::vector<std::optional<AreaAndBounds>> measured(b.face_slots());
-  if (const geo::FreeformBackend* ff = geo::freeform_backend()) {
-    for (FaceH f : b.faces())
-      if (geo::is_freeform(b.surface(f))) (void)ff->surface_problem(b.surface(f));
-    for (EdgeH e : b.edges())
-      if (geo::is_freeform(b.curve(e))) (void)ff->curve_problem(b.curve(e));
-  }
-  std::vector<std::vector<FaceH>> groups;
-  std::unordered_map<const void*, std::size_t> group_of;
-  for (FaceH f : b.faces()) {
-    const void* state = freeform_state(b.surface(f));
-    if (!state) {
-      groups.push_back({f});
-      continue;
-    }
-    auto [it, added] = group_of.emplace(state, groups.size());
-    if (added) groups.emplace_back();
-    groups[it->second].push_back(f);
-  }
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < groups.size();)
-      for (FaceH f : groups[i]) measured[f.idx()] = face_area_and_bounds(b, f, chordal);
-  };
+  const std::vector<FaceH> faces = b.faces();
+  prepare_freeform(b, faces);
+  const std::vector<std::vector<FaceH>> groups = evaluation_groups(b, faces);
   // Below a few dozen faces a thread costs more than it saves.
-  const int threads = groups.size() >= 32 ? std::min<int>(detect_threads(), int(groups.size())) : 1;
-  std::vector<std::thread> pool;
-  for (int k = 1; k < threads; ++k) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  for_each_grouped(groups, groups.size() >= kMinGroupsForThreads ? detect_threads() : 1,
+                   [&](FaceH f) { measured[f.idx()] = face_area_and_bounds(b, f, chordal); });
   return measured;
 }
 

@@ -128,6 +128,23 @@ TEST_P(CorpusPart, ReadsCheckDetectBeautifyWrite) {
   Detection d = detect(b, tol);
   EXPECT_LT(since(td), kMaxSeconds);
   row.problems = int(d.problems.size());
+  {
+    // Faces with free-form geometry are measured on threads by evaluation group
+    // (repair/freeform_groups.h): the same problems, to the last digit, on one thread.
+    auto listing = [](const Detection& x) {
+      std::ostringstream os;
+      for (const Problem& p : x.problems) {
+        os << problem_name(p.type);
+        for (const std::string& e : element_names(p)) os << ' ' << e;
+        os << ' ' << std::hexfloat << p.measure << std::defaultfloat << '\n';
+      }
+      return os.str();
+    };
+    set_detect_threads(1);
+    const Detection one = detect(b, tol);
+    set_detect_threads(0);
+    EXPECT_EQ(listing(one), listing(d)) << row.part;
+  }
 
   io::register_occt_region_check(b, tol.precision);
   auto tb = clock_type::now();
