@@ -9,6 +9,7 @@
 // freedom along a line when two faces meet there.
 #include "repair/region_solve.h"
 
+#include "geometry/bit_hash.h"
 #include "geometry/same_geometry.h"
 #include "geometry/solver_log.h"
 #include "geometry/surface.h"
@@ -21,7 +22,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <type_traits>
 #include <set>
@@ -163,11 +163,7 @@ thread_local FailedSolves g_failed_solves;
 // all of them, keep the QR, which is better conditioned under the hard weight.
 constexpr int kMaxDenseParameters = 120;
 
-std::uint64_t mix(std::uint64_t h, double x) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  return (h ^ bits) * 1099511628211ull;
-}
+using geo::fnv_mix;
 
 RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
                                  bool weigh_zipped_by_area);
@@ -458,15 +454,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   SolveInput input;
   input.length = tol.length, input.precision = tol.precision;
   input.tie = tie, input.w_face = w_face;
-  std::uint64_t h = mix(mix(14695981039346656037ull, tol.length), tol.precision);
+  std::uint64_t h = fnv_mix(fnv_mix(geo::kFnvOffsetBasis, tol.length), tol.precision);
   for (FaceH f : faces) {
     input.faces.push_back(f.idx()), input.surfaces.push_back(b.surface(f));
     input.samples.push_back(original.at(f).samples);
-    for (const geo::Vec3& q : input.samples.back()) h = mix(mix(mix(h, q.x()), q.y()), q.z());
+    for (const geo::Vec3& q : input.samples.back()) h = fnv_mix(fnv_mix(fnv_mix(h, q.x()), q.y()), q.z());
   }
   for (VertexH v : vlist) {
     input.vertices.push_back(v.idx()), input.points.push_back(b.point(v));
-    h = mix(mix(mix(mix(h, double(v.idx())), b.point(v).x()), b.point(v).y()), b.point(v).z());
+    h = fnv_mix(fnv_mix(fnv_mix(fnv_mix(h, double(v.idx())), b.point(v).x()), b.point(v).y()), b.point(v).z());
   }
   for (const Constraint& c : constraints) {
     input.constraints.emplace_back(c.vertex, c.face.idx());

@@ -1,5 +1,6 @@
 #include "view/tessellate.h"
 
+#include "geometry/bit_hash.h"
 #include "geometry/area.h"
 #include "invariants/element_geometry.h"
 
@@ -41,8 +42,8 @@ struct PointKey {
 };
 struct PointKeyHash {
   std::size_t operator()(const PointKey& k) const noexcept {
-    std::uint64_t h = 1469598103934665603ull;
-    for (std::uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull;
+    std::uint64_t h = geo::kFnvOffsetBasis;
+    for (std::uint64_t b : k.bits) h = geo::fnv_mix(h, b);
     return std::size_t(h);
   }
 };
