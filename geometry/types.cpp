@@ -39,4 +39,15 @@ const char* curve_type_name(const Curve& c) {
 bool is_freeform(const Surface& s) { return s.index() >= std::variant_size_v<Surface> - 4; }
 bool is_freeform(const Curve& c) { return std::holds_alternative<BSplineCurve>(c); }
 
+std::shared_ptr<const void>* cache_slot(const Surface& s) {
+  return std::visit(
+      [](const auto& x) -> std::shared_ptr<const void>* {
+        if constexpr (requires { x.cache; })
+          return &x.cache;
+        else
+          return nullptr;
+      },
+      s);
+}
+
 }  // namespace kintsugi::geo

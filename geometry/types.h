@@ -176,6 +176,9 @@ using Curve = std::variant<std::monostate, Line, Circle, Ellipse, Polyline, BSpl
 // Whether the geometry is free-form (needs the backend of geometry/freeform.h).
 bool is_freeform(const Surface& s);
 bool is_freeform(const Curve& c);
+// Where the free-form backend keeps a surface's evaluation state (its `cache`, shared by
+// copies of the data); nullptr for an analytic surface.
+std::shared_ptr<const void>* cache_slot(const Surface& s);
 
 // Names used in files, reports and messages.
 const char* surface_type_name(const Surface& s);

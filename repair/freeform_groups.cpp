@@ -6,23 +6,16 @@
 #include <atomic>
 #include <thread>
 #include <unordered_map>
-#include <variant>
 
 namespace kintsugi {
 namespace {
 
-// What identifies a free-form surface's evaluation state (geometry/occt/freeform_occt.cpp
-// keeps it in the surface's `cache`, shared by copies): the cache, or the object until it
-// has one; nullptr for an analytic surface.
+// What identifies a free-form surface's evaluation state: its cache, or its slot until
+// it has one (the data's own); nullptr for an analytic surface.
 const void* freeform_state(const geo::Surface& s) {
-  return std::visit(
-      [](const auto& x) -> const void* {
-        if constexpr (requires { x.cache; })
-          return x.cache ? x.cache.get() : static_cast<const void*>(&x);
-        else
-          return nullptr;
-      },
-      s);
+  const std::shared_ptr<const void>* slot = geo::cache_slot(s);
+  if (!slot) return nullptr;
+  return *slot ? slot->get() : static_cast<const void*>(slot);
 }
 
 }  // namespace

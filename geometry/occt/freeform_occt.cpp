@@ -145,20 +145,8 @@ Handle(Geom_Surface) build(const Surface& s) {
   return nullptr;
 }
 
-template <class T>
-std::shared_ptr<const void>* cache_slot(const T& x) {
-  return &x.cache;
-}
-
 SurfaceCache& surface_cache(const Surface& s) {
-  std::shared_ptr<const void>* slot = std::visit(
-      [](const auto& x) -> std::shared_ptr<const void>* {
-        if constexpr (requires { x.cache; })
-          return cache_slot(x);
-        else
-          return nullptr;
-      },
-      s);
+  std::shared_ptr<const void>* slot = cache_slot(s);
   if (!slot) throw std::invalid_argument("not a free-form surface");
   if (!*slot) {
     auto c = std::make_shared<SurfaceCache>();
