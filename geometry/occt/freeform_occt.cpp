@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <deque>
 #include <mutex>
 #include <stdexcept>
 
@@ -491,7 +492,44 @@ std::optional<Curve> from_geom(const Handle(Geom_Curve)& c) {
   return std::nullopt;
 }
 
+// The last few intersections, for the pairs asked again: a repair refused and tried again
+// in a later round, or in the run beautify starts over (CrankArm.brep at tolerance 0.175
+// met the same pinch's edge curve a dozen times, two thirds of its time in
+// GeomAPI_IntSS). The answer is a function of the two surfaces' data and the precision
+// alone; the surfaces are kept by value (their caches shared), compared by value.
+struct IntersectionMemo {
+  struct Entry {
+    Surface a, b;
+    double precision;
+    std::vector<Curve> curves;
+  };
+  static constexpr std::size_t kEntries = 64;
+  std::mutex m;
+  std::deque<Entry> entries;  // newest first
+};
+
+IntersectionMemo& intersection_memo() {
+  static IntersectionMemo memo;
+  return memo;
+}
+
+std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision);
+
 std::vector<Curve> intersect(const Surface& a, const Surface& b, double precision) {
+  IntersectionMemo& memo = intersection_memo();
+  {
+    std::lock_guard<std::mutex> lock(memo.m);
+    for (const IntersectionMemo::Entry& e : memo.entries)
+      if (e.precision == precision && e.a == a && e.b == b) return e.curves;
+  }
+  std::vector<Curve> out = intersect_uncached(a, b, precision);
+  std::lock_guard<std::mutex> lock(memo.m);
+  memo.entries.push_front({a, b, precision, out});
+  if (memo.entries.size() > IntersectionMemo::kEntries) memo.entries.pop_back();
+  return out;
+}
+
+std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision) {
   std::vector<Curve> out;
   try {
     GeomAPI_IntSS inter(any_surface(a), any_surface(b), std::max(precision, Precision::Confusion()));

@@ -3,6 +3,7 @@
 // check valid, survive the native format and BREP/STEP/IGES exactly, pass OpenCASCADE's
 // checker, and come out of beautify unchanged when nothing is wrong with them. Without
 // the backend, the native reader refuses them, saying why.
+#include "geometry/curve.h"
 #include "geometry/freeform.h"
 #include "geometry/surface.h"
 #include "geometry/surface_params.h"
@@ -141,6 +142,41 @@ Handle(Geom_BSplineSurface) wavy_patch(double shear) {
       pts(i, j) = gp_Pnt(x + shear * y, y, 0.8 * std::sin(x) * std::cos(0.7 * y));
     }
   return GeomAPI_PointsToBSplineSurface(pts).Surface();
+}
+
+// The backend keeps its last intersections (a repair tried again meets the same pair):
+// asked again, a pair gets the same curves, and another pair never gets the first
+// one's. Planes x = 3 and x = 6 across the wavy patch: each answer lies in its plane.
+TEST(FreeForm, IntersectionsAskedAgainAreTheSame) {
+  geo::occt::register_freeform_backend();
+  const geo::Surface patch = geo::occt::bspline_data(wavy_patch(0.0));
+  auto plane_at = [](double x) {
+    geo::Plane p;
+    p.frame.origin = geo::Vec3(x, 0, 0);
+    p.frame.z = geo::Vec3::UnitX();
+    p.frame.x = geo::Vec3::UnitY();
+    return geo::Surface(p);
+  };
+  const auto& ff = geo::require_freeform();
+  auto in_plane = [&](const std::vector<geo::Curve>& cs, double x) {
+    double worst = 0;
+    for (const geo::Curve& c : cs) {
+      double t0 = 0, t1 = 1;  // a line's or circle's: any two points
+      if (geo::is_freeform(c)) ff.curve_bounds(c, &t0, &t1);
+      for (int i = 0; i <= 8; ++i) worst = std::max(worst, std::abs(geo::evaluate(c, t0 + (t1 - t0) * i / 8).x() - x));
+    }
+    return worst;
+  };
+  const std::vector<geo::Curve> at3 = ff.intersect(patch, plane_at(3), 1e-7);
+  const std::vector<geo::Curve> at6 = ff.intersect(patch, plane_at(6), 1e-7);
+  const std::vector<geo::Curve> at3_again = ff.intersect(patch, plane_at(3), 1e-7);
+  ASSERT_FALSE(at3.empty());
+  ASSERT_FALSE(at6.empty());
+  EXPECT_LT(in_plane(at3, 3), 1e-6);
+  EXPECT_LT(in_plane(at6, 6), 1e-6);
+  EXPECT_TRUE(at3_again == at3);
+  // A copy of the patch's data (no shared cache) is the same surface.
+  EXPECT_TRUE(ff.intersect(geo::occt::bspline_data(wavy_patch(0.0)), plane_at(6), 1e-7) == at6);
 }
 
 // A projection with no last foot to follow starts from a seed grid's local minima
