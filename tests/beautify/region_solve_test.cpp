@@ -256,6 +256,39 @@ TEST(BeautifySolve, AFailedSolveIsRememberedForItsInputOnly) {
   EXPECT_TRUE(loose.why.empty()) << loose.why;
 }
 
+// A solve that succeeds is remembered too (SucceededSolves: a repair refused after its
+// solve is met again unchanged). Two quads with the same elements under the same names,
+// their corners lifted differently: the second is solved for its own corners (each ends
+// where its lift put it, within the tolerance), not given the first's geometry; and the
+// first asked again gets its own answer back.
+TEST(BeautifySolve, ASucceededSolveIsRememberedForItsInputOnly) {
+  geo::Tolerances tol{0.01, 1e-8};
+  PinnedQuad low = pinned_quad({1e-4, 2e-4, 3e-4, 2e-4});
+  PinnedQuad high = pinned_quad({4e-3, 5e-3, 6e-3, 5e-3});
+  ASSERT_EQ(low.quad, high.quad);
+  ASSERT_EQ(low.corners, high.corners);
+  const Body low_before = low.b.clone(), high_before = high.b.clone();
+  auto solve = [&](PinnedQuad& q) {
+    Touched t;
+    t.faces.insert(q.quad);
+    return detail::solve_region(q.b, t, q.original, tol);
+  };
+  const detail::RegionSolve first = solve(low);
+  ASSERT_TRUE(first.why.empty()) << first.why;
+  const detail::RegionSolve other = solve(high);
+  ASSERT_TRUE(other.why.empty()) << other.why;
+  for (VertexH v : high.corners) {
+    EXPECT_LT((high.b.point(v) - high_before.point(v)).norm(), 1e-3) << v;
+    EXPECT_GT((high.b.point(v) - low.b.point(v)).norm(), 1e-3) << v;
+  }
+  // The first again, from its state before: the same geometry as the first time.
+  const Body low_after = low.b.clone();
+  low.b = low_before.clone();
+  const detail::RegionSolve again = solve(low);
+  ASSERT_TRUE(again.why.empty()) << again.why;
+  for (VertexH v : low.corners) EXPECT_EQ(low.b.point(v), low_after.point(v)) << v;
+}
+
 // A large region (more than kMaxDenseParameters unknowns: region_solve.cpp) is solved with
 // sparse normal equations instead of a dense QR. It must still bring every vertex onto
 // its faces to the modelling precision, despite the squared conditioning of the normal
