@@ -133,28 +133,6 @@ struct SolveInput {
   }
 };
 
-// Solves that failed, by their input. A failed solve leaves the body as it was, and the
-// pipeline meets the same failing problem again unchanged: in each later round, and in
-// each rerun after an unsolved repair was vetoed (beautify.cpp), where the whole run is
-// replayed from the start. Each failure costs a full solve plus up to 24 more naming the
-// conflicting constraints; on CrankArm.brep (four merges that cannot be solved) that was
-// about 30 of beautify's 38 s. The solve is a function of its input, so a repeat is answered
-// from here. Per thread, the last few only.
-struct FailedSolves {
-  static constexpr std::size_t kKept = 32;
-  std::vector<std::pair<SolveInput, RegionSolve>> entries;  // oldest first
-  const RegionSolve* find(const SolveInput& in) const {
-    for (const auto& [key, result] : entries)
-      if (key == in) return &result;
-    return nullptr;
-  }
-  void add(SolveInput in, const RegionSolve& r) {
-    if (entries.size() == kKept) entries.erase(entries.begin());
-    entries.emplace_back(std::move(in), r);
-  }
-};
-thread_local FailedSolves g_failed_solves;
-
 // What one solve of a region found: the solved geometry, and how it meets its constraints.
 struct SolveOutcome {
   std::vector<geo::Surface> surfaces;  // of the solved faces
@@ -167,24 +145,31 @@ struct SolveOutcome {
   bool met() const { return unmet.empty() && vertices_too_far.empty() && !too_far; }
 };
 
-// Solves that succeeded, by their input: a repair whose solve succeeds can still be
-// refused after it (the validity gate), and is then met again unchanged, as failures are
-// (above). On CrankArm.brep at tolerance 0.175 one pinch's solve of 114 unknowns ran 14
-// times. Per thread, the last few only.
-struct SucceededSolves {
+// Solves by their input, the last few per thread. A solve is a function of its input,
+// and the pipeline meets the same problem again unchanged: in each later round, and in
+// each rerun after an unsolved repair was vetoed (beautify.cpp), where the whole run is
+// replayed from the start.
+template <class Result>
+struct SolveMemo {
   static constexpr std::size_t kKept = 32;
-  std::vector<std::pair<SolveInput, SolveOutcome>> entries;  // oldest first
-  const SolveOutcome* find(const SolveInput& in) const {
+  std::vector<std::pair<SolveInput, Result>> entries;  // oldest first
+  const Result* find(const SolveInput& in) const {
     for (const auto& [key, result] : entries)
       if (key == in) return &result;
     return nullptr;
   }
-  void add(SolveInput in, const SolveOutcome& o) {
+  void add(SolveInput in, const Result& r) {
     if (entries.size() == kKept) entries.erase(entries.begin());
-    entries.emplace_back(std::move(in), o);
+    entries.emplace_back(std::move(in), r);
   }
 };
-thread_local SucceededSolves g_succeeded_solves;
+// Failures: each costs a full solve plus the search for the conflicting constraints; on
+// CrankArm.brep (four merges that cannot be solved) that was about 30 of beautify's 38 s.
+thread_local SolveMemo<RegionSolve> g_failed_solves;
+// Successes: a repair whose solve succeeds can still be refused after it (the validity
+// gate); on CrankArm.brep at tolerance 0.175 one pinch's solve of 114 unknowns ran 14
+// times.
+thread_local SolveMemo<SolveOutcome> g_succeeded_solves;
 
 // Above this many unknowns the solve uses sparse normal equations (Eigen's sparse
 // Cholesky through Ceres) instead of a dense QR, whose cost grows with the residuals

@@ -226,7 +226,7 @@ TEST(BeautifySolve, FourPinnedCornersNotOnOnePlaneAreNamed) {
   EXPECT_TRUE(s.b.equals(before, &why)) << why;
 }
 
-// A failed solve is remembered (region_solve.cpp, FailedSolves): the pipeline meets the
+// A failed solve is remembered (region_solve.cpp, SolveMemo): the pipeline meets the
 // same failing problem again in later rounds and reruns. The memo must answer only the
 // same input: the second quad below has the same elements under the same names, with its
 // corners on one plane, and must be solved, not refused from memory.
@@ -256,7 +256,7 @@ TEST(BeautifySolve, AFailedSolveIsRememberedForItsInputOnly) {
   EXPECT_TRUE(loose.why.empty()) << loose.why;
 }
 
-// A solve that succeeds is remembered too (SucceededSolves: a repair refused after its
+// A solve that succeeds is remembered too (SolveMemo: a repair refused after its
 // solve is met again unchanged). Two quads with the same elements under the same names,
 // their corners lifted differently: the second is solved for its own corners (each ends
 // where its lift put it, within the tolerance), not given the first's geometry; and the
