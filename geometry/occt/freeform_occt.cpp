@@ -154,20 +154,9 @@ SurfaceCache& surface_cache(const Surface& s) {
     c->surface = build(s);
     c->surface->Bounds(c->u0, c->u1, c->v0, c->v1);
     c->analysis = new ShapeAnalysis_Surface(c->surface);
-    c->bounded = std::isfinite(c->u0) && std::isfinite(c->u1) && std::isfinite(c->v0) && std::isfinite(c->v1) &&
-                 std::abs(c->u0) < 1e100 && std::abs(c->u1) < 1e100 && std::abs(c->v0) < 1e100 && std::abs(c->v1) < 1e100;
-    // The adaptor evaluates a point exactly on one of its bounds by de Boor's algorithm
-    // (Geom_BSplineSurface::LocalD1, the span inside the bounds) rather than from its
-    // span cache, and projections clamped to the bounds land exactly there (boundary
-    // samples of every face that reaches a side of its surface): its bounds are put a
-    // hair outside the surface's, where nothing is evaluated. At the surface's own ends
-    // the cache's span is that same inside span.
-    if (c->bounded && c->u1 > c->u0 && c->v1 > c->v0) {
-      const double du = 1e-9 * (c->u1 - c->u0), dv = 1e-9 * (c->v1 - c->v0);
-      c->adaptor.Load(c->surface, c->u0 - du, c->u1 + du, c->v0 - dv, c->v1 + dv);
-    } else {
-      c->adaptor.Load(c->surface);
-    }
+    // Boundary samples of every face that reaches a side of its surface are projected
+    // onto the bound exactly: evaluated from the cache (load_for_evaluation).
+    c->bounded = load_for_evaluation(c->adaptor, c->surface);
     if (c->bounded) {
       Bnd_Box box;
       BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
@@ -555,6 +544,20 @@ const FreeformBackend kBackend{surface_d1,   surface_project, surface_bounds, su
 }  // namespace
 
 void register_freeform_backend() { set_freeform_backend(&kBackend); }
+
+bool load_for_evaluation(GeomAdaptor_Surface& a, const Handle(Geom_Surface)& s) {
+  double u0, u1, v0, v1;
+  s->Bounds(u0, u1, v0, v1);
+  const bool bounded = std::isfinite(u0) && std::isfinite(u1) && std::isfinite(v0) && std::isfinite(v1) &&
+                       std::abs(u0) < 1e100 && std::abs(u1) < 1e100 && std::abs(v0) < 1e100 && std::abs(v1) < 1e100;
+  if (bounded && u1 > u0 && v1 > v0) {
+    const double du = 1e-9 * (u1 - u0), dv = 1e-9 * (v1 - v0);
+    a.Load(s, u0 - du, u1 + du, v0 - dv, v1 + dv);
+  } else {
+    a.Load(s);
+  }
+  return bounded;
+}
 
 BSplineCurve bspline_data(const Handle(Geom_BSplineCurve)& c) {
   BSplineCurve out;

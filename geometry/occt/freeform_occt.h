@@ -8,6 +8,7 @@
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_Surface.hxx>
 
 #include <optional>
@@ -25,6 +26,14 @@ BSplineCurve bspline_data(const Handle(Geom_BSplineCurve)& c);
 BSplineSurface bspline_data(const Handle(Geom_BSplineSurface)& s);
 std::optional<BSplineCurve> to_bspline(const Handle(Geom_Curve)& c, std::string* why);
 std::optional<BSplineSurface> to_bspline(const Handle(Geom_Surface)& s, std::string* why);
+
+// Loads `a` with `s` to evaluate it from its span cache: when its bounds are finite and
+// not empty, with bounds a hair (1e-9 of the range) outside them, since the adaptor
+// evaluates a point exactly on one of its bounds by de Boor's algorithm
+// (Geom_BSplineSurface::LocalD1, the span inside the bounds) rather than from the cache,
+// and projections clamped to the bounds land exactly there. At the surface's own ends the
+// cache's span is that same inside span. True when the bounds are finite.
+bool load_for_evaluation(GeomAdaptor_Surface& a, const Handle(Geom_Surface)& s);
 
 // Our free-form geometry as OpenCASCADE objects (built from the data, cached on it).
 Handle(Geom_Surface) geom_surface(const Surface& s);  // free-form alternatives only; null otherwise

@@ -1,5 +1,6 @@
 #include "io/occt/pcurve.h"
 
+#include "geometry/occt/freeform_occt.h"
 #include "geometry/surface.h"
 
 #include <GeomAdaptor_Curve.hxx>
@@ -47,17 +48,7 @@ class Feet {
  public:
   Feet(const geo::Surface& s, const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c)
       : s_(s), c_(c), up_(gs->IsUPeriodic() ? gs->UPeriod() : 0), vp_(gs->IsVPeriodic() ? gs->VPeriod() : 0) {
-    double u0, u1, v0, v1;
-    gs->Bounds(u0, u1, v0, v1);
-    // As in geometry/occt/freeform_occt.cpp: bounds a hair outside the surface's, so that
-    // a foot held on a bound is evaluated from the cache too.
-    if (std::isfinite(u0) && std::isfinite(u1) && std::isfinite(v0) && std::isfinite(v1) && std::abs(u0) < 1e100 &&
-        std::abs(u1) < 1e100 && std::abs(v0) < 1e100 && std::abs(v1) < 1e100 && u1 > u0 && v1 > v0) {
-      const double du = 1e-9 * (u1 - u0), dv = 1e-9 * (v1 - v0);
-      surface_.Load(gs, u0 - du, u1 + du, v0 - dv, v1 + dv);
-    } else {
-      surface_.Load(gs);
-    }
+    geo::occt::load_for_evaluation(surface_, gs);  // a foot held on a bound from the cache too
   }
 
   // The foot of the curve's point at t: the sample (in the period of `near`, when
