@@ -3,9 +3,9 @@
 #include "io/occt/exchange.h"
 
 #include "io/occt/convert.h"
+#include "io/occt/messages.h"
 #include "io/occt/step_references.h"
 #include "geometry/occt/freeform_occt.h"
-#include "invariants/region_validity.h"
 
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -40,31 +40,39 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <memory>
 #include <mutex>
-#include <set>
 #include <sstream>
-#include <unordered_map>
 
 namespace kintsugi::io {
 
+// OpenCASCADE prints translation chatter to stdout through its default messenger;
+// the CLI's output is ours, so it goes.
+void occt::silence_occt() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Handle(Message_Messenger) m = Message::DefaultMessenger();
+    m->RemovePrinters(STANDARD_TYPE(Message_Printer));
+  });
+}
+
+std::string occt::status_name(BRepCheck_Status s) {
+  std::ostringstream os;
+  BRepCheck::Print(s, os);
+  std::string n = os.str();
+  while (!n.empty() && std::isspace(static_cast<unsigned char>(n.back()))) n.pop_back();
+  return n;
+}
+
 namespace {
+
+using occt::silence_occt;
+using occt::status_name;
 
 // OpenCASCADE's STEP interface keeps its settings in process-wide statics
 // (Interface_Static); one STEP transfer at a time.
 std::mutex& step_mutex() {
   static std::mutex m;
   return m;
-}
-
-// OpenCASCADE prints translation chatter to stdout through its default messenger;
-// the CLI's output is ours, so it goes.
-void silence_occt() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    Handle(Message_Messenger) m = Message::DefaultMessenger();
-    m->RemovePrinters(STANDARD_TYPE(Message_Printer));
-  });
 }
 
 std::string lower(std::string s) {
@@ -391,14 +399,6 @@ bool write_step(const TopoDS_Shape& shape, const std::string& path, const std::s
   return true;
 }
 
-std::string status_name(BRepCheck_Status s) {
-  std::ostringstream os;
-  BRepCheck::Print(s, os);
-  std::string n = os.str();
-  while (!n.empty() && std::isspace(static_cast<unsigned char>(n.back()))) n.pop_back();
-  return n;
-}
-
 }  // namespace
 
 std::optional<CadImport> import_cad(const std::string& path, CadFormat f, std::string* error) {
@@ -496,91 +496,6 @@ OcctVerdict occt_check(const Body& b, double precision) {
     v.problems.push_back(std::string("OpenCASCADE failed while checking: ") + e.GetMessageString());
   }
   return v;
-}
-
-namespace {
-
-// The model before beautify and BRepCheck's verdict on each of its faces, taken when
-// first asked for.
-struct RegionCheckInput {
-  std::shared_ptr<const Body> body;
-  std::unordered_map<std::uint32_t, bool> face_valid;
-  double precision = 0;
-};
-RegionCheckInput g_input;
-
-// `near`: only the loops of f near that box (Region::near).
-bool face_passes_brepcheck(const Body& b, FaceH f, const geo::Box* near = nullptr) {
-  const std::set<FaceH> one{f};
-  occt::LoopSubsets loops;
-  if (near) loops[f] = loops_near(b, f, *near);
-  std::string why;
-  std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &one, &loops, g_input.precision);
-  return s && BRepCheck_Analyzer(s->face[f.idx()]).IsValid() == Standard_True;
-}
-
-// Whether face f of the model before beautify failed BRepCheck: then the same face after a
-// repair may fail too. A face checked near a change only (`near`) is compared with the
-// same place of the face before, which is not remembered.
-bool failed_before(FaceH f, const geo::Box* near) {
-  const Body* in = g_input.body.get();
-  if (!in || !in->alive(f)) return false;  // a new face: it must pass
-  if (near) {
-    try {
-      return !face_passes_brepcheck(*in, f, near);
-    } catch (const Standard_Failure&) {
-      return true;
-    }
-  }
-  auto it = g_input.face_valid.find(f.idx());
-  if (it == g_input.face_valid.end()) {
-    bool valid = true;
-    try {
-      valid = face_passes_brepcheck(*in, f);
-    } catch (const Standard_Failure&) {
-      valid = false;
-    }
-    it = g_input.face_valid.emplace(f.idx(), valid).first;
-  }
-  return !it->second;
-}
-
-std::string occt_region_check(const Body& b, const Region& r) {
-  silence_occt();
-  try {
-    std::string why;
-    occt::LoopSubsets loops;
-    for (const auto& [f, near] : r.near) loops[f] = near.loops;
-    std::optional<occt::BuiltShape> s = occt::to_shape(b, &why, &r.faces, &loops, g_input.precision);
-    if (!s) return "the model could not be written: " + why;
-    for (FaceH f : r.faces) {
-      BRepCheck_Analyzer ana(s->face[f.idx()]);
-      auto near = r.near.find(f);
-      if (ana.IsValid() || failed_before(f, near == r.near.end() ? nullptr : &near->second.box)) continue;
-      TopTools_IndexedMapOfShape all;
-      TopExp::MapShapes(s->face[f.idx()], all);
-      all.Add(s->face[f.idx()]);
-      for (int i = 1; i <= all.Extent(); ++i) {
-        Handle(BRepCheck_Result) res = ana.Result(all(i));
-        if (res.IsNull()) continue;
-        for (BRepCheck_ListIteratorOfListOfStatus it(res->Status()); it.More(); it.Next())
-          if (it.Value() != BRepCheck_NoError) return "OpenCASCADE's checker: " + f.str() + ": " + status_name(it.Value());
-      }
-      return "OpenCASCADE's checker: " + f.str() + " is not valid";
-    }
-  } catch (const Standard_Failure& e) {
-    return std::string("OpenCASCADE failed while checking the region: ") + e.GetMessageString();
-  }
-  return "";
-}
-
-}  // namespace
-
-void register_occt_region_check(const Body& input, double precision) {
-  g_input.body = std::make_shared<const Body>(input);
-  g_input.face_valid.clear();
-  g_input.precision = precision;
-  set_external_region_check(&occt_region_check);
 }
 
 }  // namespace kintsugi::io
