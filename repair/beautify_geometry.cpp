@@ -103,6 +103,31 @@ std::optional<geo::Circle> seam_circle(const geo::Surface& s) {
   return std::nullopt;
 }
 
+// Whether the edge's present curve still runs through both its vertices and lies on the
+// surfaces of both its faces, to the modelling precision: then it is their intersection
+// already, and is kept. Intersecting again would find the same curve, except where the
+// surfaces are tangent along the edge (a fillet's or a blend's boundary), where the
+// intersection is a double root the marcher misses: on OpenCASCADE's Top.brep the merge
+// of two faces of one torus was refused because the torus did not meet the fillet beside
+// it along their common edge. Scanned polylines are not kept (a polyline between curved
+// faces lies on them at its points only; the repair replaces it by the intersection).
+bool still_on_both(const geo::Curve& old, const geo::Vec3& p0, const geo::Vec3& p1, bool closed,
+                   const geo::Surface& sf, const geo::Surface& sg, const geo::Tolerances& tol) {
+  if (std::holds_alternative<std::monostate>(old) || std::holds_alternative<geo::Polyline>(old)) return false;
+  if (geo::closest_point(old, p0).distance > tol.precision || geo::closest_point(old, p1).distance > tol.precision)
+    return false;
+  const geo::ParameterRange r = geo::parameter_range(old, p0, p1, closed ? tol.precision : 0.0);
+  if (!(r.t0 != r.t1)) return false;
+  // On both surfaces at 17 points from end to end.
+  constexpr int kInside = 16;
+  for (int i = 0; i <= kInside; ++i) {
+    const geo::Vec3 q = geo::evaluate(old, r.t0 + (r.t1 - r.t0) * double(i) / kInside);
+    if (std::abs(geo::signed_distance(sf, q)) > tol.precision || std::abs(geo::signed_distance(sg, q)) > tol.precision)
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched) {
@@ -206,6 +231,7 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     }
     if (on) return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
   }
+  if (still_on_both(old, p0, p1, closed, sf, sg, tol)) return old;
   // The region: the vertices and the present curve, with a margin.
   geo::Box region;
   region.add(p0);
