@@ -1,7 +1,8 @@
 // Pass 8, adjacent faces with the same geometry (paper 4.5): every edge between the two
 // faces is removed (kef for the first, which kills the second face; then struts left
 // hanging are killed with kev and edges that still separate the face from itself become
-// rings with kemr). The union's surface is a least-squares fit over both faces'
+// rings with kemr, unless the face goes round its surface's axis across one: that edge
+// is its seam and stays). The union's surface is a least-squares fit over both faces'
 // boundary samples (geo::fit_surface_like, the type of the surviving face); the merged
 // face's vertices move to where their faces now meet (at most the tolerance), and the
 // edges there get curves through them. Vertices left on two edges are for pass 10.
@@ -10,6 +11,7 @@
 #include "kernel/euler.h"
 #include "repair/beautify_detail.h"
 
+#include <cmath>
 #include <variant>
 
 namespace kintsugi::detail {
@@ -29,6 +31,38 @@ std::vector<EdgeH> common_edges(const Body& b, FaceH f, FaceH g) {
     for (HalfedgeH h : b.loop_halfedges(l))
       if (b.face(twin(h)) == g) out.push_back(edge_of(h));
   return out;
+}
+
+// The axis a surface is periodic about (the parameter u of spec/geometry.md), or null.
+const geo::Frame* axis_frame(const geo::Surface& s) {
+  if (const auto* x = std::get_if<geo::Cylinder>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Cone>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Sphere>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Torus>(&s)) return &x->frame;
+  return nullptr;
+}
+
+// Whether the half-edges from next(h) to prev(twin(h)) — the loop kemr(h) would make —
+// go once round the axis of the face's surface. Then edge_of(h) is not a bridge to an
+// inner boundary but the face's seam: two faces of one cylinder split along two rulings
+// have both rulings in common, and once the first is killed the second joins the face to
+// itself the way a seam does. Made into a ring instead, it left a cylinder bounded by two
+// circles and no seam, which OpenCASCADE cannot orient.
+bool goes_round_axis(const Body& b, HalfedgeH h, const geo::Surface& s, const geo::Tolerances& tol) {
+  const geo::Frame* frame = axis_frame(s);
+  if (!frame) return false;
+  const geo::Vec3 x = frame->x, y = frame->y();
+  double turn = 0, last = 0;
+  bool started = false;
+  for (HalfedgeH e = b.next(h); e != twin(h); e = b.next(e))
+    for (const geo::Vec3& p : halfedge_polyline(b, e, tol.region_chordal())) {
+      const geo::Vec3 r = p - frame->origin;
+      const double a = std::atan2(r.dot(y), r.dot(x));
+      if (started) turn += std::remainder(a - last, 2 * M_PI);
+      last = a;
+      started = true;
+    }
+  return std::abs(std::abs(turn) - 2 * M_PI) < 0.5;
 }
 
 }  // namespace
@@ -117,6 +151,10 @@ std::string repair_same_geometry(RepairContext& c) {
       return n.norm();
     };
     HalfedgeH cut = halfedge_of(rest.front(), 0);
+    if (goes_round_axis(b, cut, b.surface(f), c.tol)) {
+      rest.erase(rest.begin());  // the merged face's seam
+      continue;
+    }
     if (enclosed(twin(cut)) < enclosed(cut)) cut = twin(cut);
     auto r = euler::kemr(b, cut);
     if (!r) return std::string("kemr refused: ") + r.error().message;

@@ -408,6 +408,58 @@ KnownDefect split_and_tilt(Body& b, FaceH f, EdgeH e1, EdgeH e2, double deviatio
   return {ProblemType::same_geometry_faces, {f.str(), f2.str(), m.edge.str()}, theta * reach};
 }
 
+KnownDefect split_along_ruling(Body& b, FaceH f, double min_gap) {
+  const geo::Surface s = b.surface(f);
+  const geo::Frame* frame = nullptr;
+  if (const auto* c = std::get_if<geo::Cylinder>(&s)) frame = &c->frame;
+  if (const auto* c = std::get_if<geo::Cone>(&s)) frame = &c->frame;
+  if (!frame) throw Unsuitable(f.str() + " is not on a cylinder or a cone");
+  if (b.loops_of(f).size() != 1 || b.is_lone(b.outer_loop(f))) throw Unsuitable(f.str() + " has rings");
+  const std::vector<HalfedgeH> hs = b.loop_halfedges(b.outer_loop(f));
+  if (hs.size() != 4) throw Unsuitable(f.str() + " is not bounded by two circles and two rulings");
+  // The face's two ends: circles about the surface's axis; the other two sides straight
+  // (two rulings, or a seam's two sides).
+  std::vector<HalfedgeH> ends;
+  for (HalfedgeH h : hs) {
+    const geo::Curve& c = b.curve(edge_of(h));
+    if (const auto* ci = std::get_if<geo::Circle>(&c); ci && ci->frame.z.cross(frame->z).norm() <= 1e-9)
+      ends.push_back(h);
+    else if (!std::holds_alternative<geo::Line>(c))
+      throw Unsuitable(f.str() + " is not bounded by two circles and two rulings");
+  }
+  if (ends.size() != 2) throw Unsuitable(f.str() + " is not bounded by two circles and two rulings");
+  // The arc of end h (in its edge's direction), and whether x is inside it at least
+  // min_gap from its ends.
+  auto arc = [&](HalfedgeH h) {
+    const EdgeH e = edge_of(h);
+    const HalfedgeH h0 = halfedge_of(e, 0);
+    const auto& ci = std::get<geo::Circle>(b.curve(e));
+    return geo::parameter_range(b.curve(e), b.point(b.origin(h0)), b.point(b.target(h0)), 1e-9 * ci.radius);
+  };
+  auto inside = [&](HalfedgeH h, const Vec3& x) {
+    const geo::Curve& c = b.curve(edge_of(h));
+    const double radius = std::get<geo::Circle>(c).radius;
+    const geo::ParameterRange r = arc(h);
+    double t = geo::parameter(c, x);
+    while (t < r.t0) t += 2 * M_PI;
+    while (t >= r.t0 + 2 * M_PI) t -= 2 * M_PI;
+    return (t - r.t0) * radius >= min_gap && (r.t1 - t) * radius >= min_gap;
+  };
+  const geo::ParameterRange r0 = arc(ends[0]);
+  const Vec3 m0 = geo::evaluate(b.curve(edge_of(ends[0])), 0.5 * (r0.t0 + r0.t1));
+  // The other end's point at the same angle about the axis: the ruling through m0.
+  const Vec3 m1 = geo::closest_point(b.curve(edge_of(ends[1])), m0).point;
+  if (!inside(ends[0], m0) || !inside(ends[1], m1)) throw Unsuitable(f.str() + ": its ends are too short to split");
+  SemvResult s0 = must(euler::semv(b, ends[0], m0), "semv (split along a ruling)");
+  SemvResult s1 = must(euler::semv(b, ends[1], m1), "semv (split along a ruling)");
+  MefResult m = must(euler::mef(b, Corner::before(s0.next), Corner::before(s1.next)), "mef (split along a ruling)");
+  b.set_surface(m.face, s, b.same_sense(f));
+  const HalfedgeH a = halfedge_of(m.edge, 0);
+  const Vec3 p = b.point(b.origin(a)), q = b.point(b.target(a));
+  b.set_curve(m.edge, geo::Line{p, (q - p).normalized()});
+  return {ProblemType::same_geometry_faces, {f.str(), m.face.str(), m.edge.str()}, 0.0};
+}
+
 KnownDefect split_edge(Body& b, HalfedgeH h, double at) {
   EdgeH e = edge_of(h);
   const geo::Curve& c = b.curve(e);

@@ -58,6 +58,12 @@ KnownDefect chamfer_plane(Body& b, EdgeH e, FaceH A, const Vec3& point, const Ve
 // the new half turned about the split line so that the two planes deviate by
 // `deviation` over f.
 KnownDefect split_and_tilt(Body& b, FaceH f, EdgeH e1, EdgeH e2, double deviation);
+// same_geometry_faces on a curved face: a face on a cylinder or a cone bounded by two
+// circles about its axis and two rulings (or a seam) split along the ruling through the
+// middle of one end, both halves keeping the one surface — the face a CAD export or a fit
+// leaves in two pieces (OpenCASCADE's bottle.brep has its fillets so). The split's ends
+// are at least `min_gap` from the corners.
+KnownDefect split_along_ruling(Body& b, FaceH f, double min_gap);
 
 // mergeable_edges: a vertex on the curve of edge_of(h), at fraction `at` of its length.
 KnownDefect split_edge(Body& b, HalfedgeH h, double at);

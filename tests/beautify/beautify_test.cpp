@@ -96,6 +96,28 @@ TEST(Beautify, CoplanarFacesBecomeOneFaceWithoutTwoValentVertices) {
   EXPECT_EQ(p.counts(), clean) << describe(r2);
 }
 
+// A cylinder's side split along a ruling opposite its seam, both halves on the one
+// surface (zoo::make::split_along_ruling): the two halves have two edges in common, the
+// new ruling and the seam. Merging kills one; the other joins the face to itself as a seam
+// does and must stay one (made a ring, it left a side bounded by two circles and no seam,
+// which OpenCASCADE cannot orient). Pass 10 then joins the circles' pieces.
+TEST(Beautify, CylinderSplitAlongARulingIsOneSideAgainWithItsSeam) {
+  Body b = build::cylinder(1, 2);
+  const Counts clean = b.counts();
+  std::string err;
+  auto inj = zoo::inject(b, ProblemType::same_geometry_faces, 5, std::nullopt, 0.02, &err);
+  ASSERT_TRUE(inj) << err;
+  ASSERT_EQ(b.counts().faces, clean.faces + 1);
+  const geo::Tolerances tol = tol_for(b, 0.02);
+  BeautifyReport r = beautify(b, tol);
+  EXPECT_EQ(b.counts(), clean) << inj->description << "\n" << describe(r);
+  EXPECT_TRUE(check_topology(b).empty());
+  EXPECT_LE(check_geometry(b, tol.precision).max_deviation, tol.precision);
+  int seams = 0;
+  for (EdgeH e : b.edges()) seams += b.face(halfedge_of(e, 0)) == b.face(halfedge_of(e, 1));
+  EXPECT_EQ(seams, 1) << describe(r);
+}
+
 TEST(Beautify, EdgeCutIntoShortPiecesBecomesOneEdge) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     Body b = build::box(1, 1, 1);

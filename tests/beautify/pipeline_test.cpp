@@ -70,10 +70,7 @@ TEST(Pipeline, LeftIsWhatDetectFindsOnPaperObjects) {
 
 // A cylinder whose side is two half-cylinders on one surface: the top and bottom circles
 // are each cut at the seam's vertex and at the opposite point, where a second vertical
-// edge splits the side. Pass 8 merges the halves (both vertical edges go), which leaves
-// each circle's two vertices on two arcs: four mergeable vertices. Pass 10 merges at one
-// vertex of a circle, which leaves the other on a single closed edge: that problem was
-// resolved by the earlier repair and must be reported so, not as "not repaired".
+// edge splits the side.
 Body two_half_cylinders() {
   Body b = build::cylinder(1, 2);
   FaceH side;
@@ -105,11 +102,30 @@ Body two_half_cylinders() {
   return b;
 }
 
-TEST(Pipeline, AProblemRemovedByAnEarlierRepairIsReportedResolved) {
+// The same with both vertical edges gone (kef, then kemr: a side bounded by two circles,
+// no seam), each circle left with two vertices on two arcs: four mergeable vertices. Pass
+// 10 merges at one vertex of a circle, which leaves the other on a single closed edge:
+// that problem was resolved by the earlier repair and must be reported so, not as "not
+// repaired". (Pass 8 made this body from the two halves until it kept one of the two
+// edges as the side's seam.)
+Body seamless_side_with_cut_circles() {
   Body b = two_half_cylinders();
+  std::vector<EdgeH> between;
+  for (EdgeH e : b.edges())
+    if (std::holds_alternative<geo::Line>(b.curve(e))) between.push_back(e);
+  if (between.size() != 2) throw std::runtime_error("expected two vertical edges");
+  HalfedgeH first = halfedge_of(between[0], 0);
+  if (!b.is_outer(b.loop(twin(first)))) first = twin(first);
+  if (auto k = euler::kef(b, first); !k) throw std::runtime_error("kef: " + k.error().message);
+  if (auto k = euler::kemr(b, halfedge_of(between[1], 0)); !k) throw std::runtime_error("kemr: " + k.error().message);
+  return b;
+}
+
+TEST(Pipeline, AProblemRemovedByAnEarlierRepairIsReportedResolved) {
+  Body b = seamless_side_with_cut_circles();
   ASSERT_TRUE(check_topology(b).empty());
   const geo::Tolerances tol = tol_for(b, 0.02);
-  ASSERT_EQ(detect(b, tol).count(ProblemType::same_geometry_faces), 1);
+  ASSERT_EQ(detect(b, tol).count(ProblemType::mergeable_edges), 4);
   BeautifyReport r = beautify(b, tol);
   int resolved = 0, merged = 0;
   std::string all;

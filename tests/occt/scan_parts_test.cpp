@@ -193,8 +193,26 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   for (std::size_t k = 0; k < order.size(); ++k) {
     std::string err;
     Body twin;
-    if (!zoo::inject(b, order[k], rng.raw(), std::nullopt, t, &err, &twin))
-      return *skip = id.str() + ": no place for " + problem_name(order[k]) + ": " + err, std::nullopt;
+    const std::uint64_t inject_seed = rng.raw();
+    // A face fitted twice is split planar faces by the injector's choice (it tries curved
+    // ones only where no planar face suits); every other such case splits a cylinder or a
+    // cone of the part along a ruling instead (a fillet or a hole in two pieces on one
+    // surface), where the part has one that suits.
+    std::optional<zoo::Injected> made;
+    if (order[k] == ProblemType::same_geometry_faces) {
+      zoo::Rng pick(inject_seed ^ 0xc0ffee);
+      std::vector<FaceH> curved;
+      for (FaceH f : b.faces())
+        if (std::holds_alternative<geo::Cylinder>(b.surface(f)) || std::holds_alternative<geo::Cone>(b.surface(f)))
+          curved.push_back(f);
+      if (pick.below(2) == 0)
+        for (std::size_t n = curved.size(); n > 0 && !made; --n) {
+          std::swap(curved[n - 1], curved[pick.below(n)]);
+          made = zoo::inject(b, order[k], inject_seed, curved[n - 1].str(), t, &err, &twin);
+        }
+    }
+    if (!made) made = zoo::inject(b, order[k], inject_seed, std::nullopt, t, &err, &twin);
+    if (!made) return *skip = id.str() + ": no place for " + problem_name(order[k]) + ": " + err, std::nullopt;
     if (!twin.faces().empty()) {
       if (k > 0) return *skip = id.str() + ": a second pinch (no designer's model for it)", std::nullopt;
       designer = std::move(twin);
