@@ -90,6 +90,14 @@ struct Seg {
 
 double cross2(const geo::Vec2& a, const geo::Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// Distance from p to the segment a–b.
+double segment_distance(const geo::Vec2& p, const geo::Vec2& a, const geo::Vec2& b) {
+  const geo::Vec2 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
 // Proper crossing of two segments: each one's ends strictly on both sides of the other,
 // by more than `eps` (a relative margin in parameter units), so that touching at shared
 // vertices and running along each other are not crossings.
@@ -244,6 +252,49 @@ void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, c
                           : "two loops of " + f.str() + " cross in the parameter domain (edges e" + std::to_string(si.edge) +
                                 " and e" + std::to_string(sj.edge) + ")",
                      0.0});
+    }
+  }
+
+  // Holes inside the outer loop: a hole that crosses no loop can still lie wholly outside
+  // the face (OpenCASCADE: BRepCheck_InvalidImbricationOfWires). Where the outer loop
+  // closes in the domain, a point of each closed hole must be inside it for some period
+  // shift (a cone's band runs u from 0 to 2π; a hole at u = -100° is inside).
+  for (std::size_t o = 0; o < fl.closed.size(); ++o) {
+    if (!fl.closed_is_outer[o]) continue;
+    const std::vector<geo::Vec2>& outer = fl.closed[o];
+    // +1 inside, -1 outside, 0 within eps of the boundary.
+    auto where = [&](const geo::Vec2& p) {
+      bool in = false;
+      for (std::size_t i = 0, j = outer.size() - 1; i < outer.size(); j = i++) {
+        const geo::Vec2 &a = outer[j], &c = outer[i];
+        if (segment_distance(p, a, c) <= eps) return 0;
+        if ((a.y() > p.y()) != (c.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) / (c.y() - a.y()) * (c.x() - a.x()))
+          in = !in;
+      }
+      return in ? 1 : -1;
+    };
+    for (std::size_t k = 0; k < fl.closed.size(); ++k) {
+      if (fl.closed_is_outer[k]) continue;
+      // The first point of the hole off the outer boundary decides (a hole touching it
+      // elsewhere is the crossing checks' business).
+      int verdict = 0;
+      for (const geo::Vec2& p : fl.closed[k]) {
+        bool inside = false, on = false;
+        for (const geo::Vec2& sh : shifts) {
+          const int w = where(p + sh);
+          inside = inside || w > 0;
+          on = on || w == 0;
+        }
+        if (inside || !on) {
+          verdict = inside ? 1 : -1;
+          break;
+        }
+      }
+      if (verdict < 0)
+        out.push_back({"hole_outside", {f.str(), fl.closed_loop[k].str()},
+                       "the hole " + fl.closed_loop[k].str() + " of " + f.str() +
+                           " lies outside its outer loop in the parameter domain",
+                       0.0});
     }
   }
 

@@ -467,13 +467,15 @@ KnownDefect split_edge(Body& b, HalfedgeH h, double at) {
   Vec3 x;
   if (std::holds_alternative<geo::Line>(c)) {
     x = p0 + at * (p1 - p0);
-  } else if (std::holds_alternative<geo::Circle>(c)) {
+  } else if (std::holds_alternative<geo::Circle>(c) || std::holds_alternative<geo::Ellipse>(c) ||
+             std::holds_alternative<geo::BSplineCurve>(c)) {
+    // At the fraction `at` of the parameter range, from h's origin.
     HalfedgeH h0 = halfedge_of(e, 0);
     geo::ParameterRange r = geo::parameter_range(c, b.point(b.origin(h0)), b.point(b.target(h0)), 1e-12);
     double t = h == h0 ? r.t0 + at * (r.t1 - r.t0) : r.t1 - at * (r.t1 - r.t0);
     x = geo::evaluate(c, t);
   } else {
-    throw Unsuitable(e.str() + " is neither a line nor a circle");
+    throw Unsuitable(e.str() + " is not a line, circle, ellipse or B-spline curve");
   }
   SemvResult s = must(euler::semv(b, h, x), "semv (mergeable)");
   return {ProblemType::mergeable_edges, {s.vertex.str(), e.str(), s.edge.str()}, 0.0};
@@ -495,8 +497,22 @@ KnownDefect cut_edge(Body& b, HalfedgeH h, double start, const std::vector<doubl
     len = (r.t1 - r.t0) * circle->radius;
     double t0 = r.t0, rad = circle->radius;
     at = [=](double s) { return geo::evaluate(c, t0 + s / rad); };
+  } else if (std::holds_alternative<geo::Ellipse>(c) || std::holds_alternative<geo::BSplineCurve>(c)) {
+    // Arc length s from the start, by bisection on the parameter (the length grows with it).
+    if (h != halfedge_of(e, 0)) h = twin(h), std::swap(p0, p1);
+    const geo::ParameterRange r = geo::parameter_range(c, p0, p1, 1e-12);
+    const double t0 = r.t0, t1 = r.t1;
+    len = geo::arc_length(c, t0, t1);
+    at = [=](double s) {
+      double lo = t0, hi = t1;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (geo::arc_length(c, t0, mid) < s ? lo : hi) = mid;
+      }
+      return geo::evaluate(c, 0.5 * (lo + hi));
+    };
   } else {
-    throw Unsuitable(e.str() + " is neither a line nor a circle");
+    throw Unsuitable(e.str() + " is not a line, circle, ellipse or B-spline curve");
   }
   double total = 0;
   for (double x : pieces) total += x;

@@ -338,7 +338,12 @@ std::vector<GapSite> gap_sites(const Body& b, ProblemType t, double tol, Rng& rn
         // face's has thousands, and the gap needs room, not the exact farthest point.
         // (Every triangle against every boundary segment took over a minute on a builder
         // cone under the sanitizers: a fuzz_beautify timeout.)
-        std::vector<Vec3> candidates{m.centroid};
+        // The centroid only of a planar face: a curved face's (a cone's band, a cylinder's
+        // side) is off the face, and its foot on the surface can be outside the face, where
+        // a hole 3D-far from every edge passed for roomy (the scan-parts score, a tee's
+        // chamfer; region validity now refuses such a hole: hole_outside).
+        std::vector<Vec3> candidates;
+        if (std::holds_alternative<geo::Plane>(b.surface(f))) candidates.push_back(m.centroid);
         const std::size_t stride = 1 + m.mesh.triangles.size() / 1024;
         for (std::size_t t = 0; t < m.mesh.triangles.size(); t += stride) {
           const auto& tri = m.mesh.triangles[t];

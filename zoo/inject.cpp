@@ -33,7 +33,17 @@ double edge_len(const Body& b, EdgeH e) {
     geo::ParameterRange r = geo::parameter_range(c, p, q, 1e-12 * circle->radius);
     return (r.t1 - r.t0) * circle->radius;
   }
+  if (std::holds_alternative<geo::Ellipse>(c) || std::holds_alternative<geo::BSplineCurve>(c)) {
+    geo::ParameterRange r = geo::parameter_range(c, p, q, 1e-12);
+    return geo::arc_length(c, r.t0, r.t1);
+  }
   return (q - p).norm();
+}
+
+// Curves an edge can be split on or cut into pieces along (make::split_edge, cut_edge).
+bool splittable(const geo::Curve& c) {
+  return std::holds_alternative<geo::Line>(c) || std::holds_alternative<geo::Circle>(c) ||
+         std::holds_alternative<geo::Ellipse>(c) || std::holds_alternative<geo::BSplineCurve>(c);
 }
 
 // A planar face with a convex outer loop and no rings, all edges straight.
@@ -208,8 +218,7 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
       break;
     case ProblemType::mergeable_edges:
       for (EdgeH e : edges) {
-        const geo::Curve& c = b.curve(e);
-        if (!std::holds_alternative<geo::Line>(c) && !std::holds_alternative<geo::Circle>(c)) continue;
+        if (!splittable(b.curve(e))) continue;
         if (edge_len(b, e) < 4 * tol) continue;
         double at_ = rng.uniform(0.3, 0.7);
         out.push_back({[=](Body& x) { return make::split_edge(x, halfedge_of(e, 0), at_); }, e.str()});
@@ -217,8 +226,7 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
       break;
     case ProblemType::short_edge_chain:
       for (EdgeH e : edges) {
-        const geo::Curve& c = b.curve(e);
-        if (!std::holds_alternative<geo::Line>(c) && !std::holds_alternative<geo::Circle>(c)) continue;
+        if (!splittable(b.curve(e))) continue;
         double len = edge_len(b, e);
         std::vector<double> pieces(2 + rng.below(3));
         double total = 0;

@@ -4,10 +4,14 @@
 // wrong way, an edge between two vertices at one point — is found and named.
 #include "invariants/region_validity.h"
 #include "kernel/builders.h"
+#include "kernel/euler.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
 
 namespace kintsugi {
 namespace {
@@ -59,6 +63,64 @@ TEST(RegionValidity, ASelfCrossingLoopIsFound) {
   EXPECT_TRUE(has(all, "loop_self_intersection")) << list(all);
   EXPECT_TRUE(has(all, "vertex_on_surface")) << list(all);
   EXPECT_NE(region_validity(b, r, kTol, kTol.precision), "");
+}
+
+// A triangular ring through p (counter-clockwise about f's outward normal, seen from the
+// disc inside it), its inside a face of its own on f's surface; the ring is f's hole.
+void add_triangle_ring(Body& b, FaceH f, const std::array<geo::Vec3, 3>& p) {
+  auto strut = euler::mev(b, Corner::before(b.first(b.outer_loop(f))), p[0]);
+  ASSERT_TRUE(strut);
+  auto ring = euler::kemr(b, strut->x);
+  ASSERT_TRUE(ring);
+  auto disc = euler::mef(b, Corner::in_lone(ring->ring), Corner::in_lone(ring->ring));
+  ASSERT_TRUE(disc);
+  b.set_surface(disc->face, b.surface(f), b.same_sense(f));
+  auto s1 = euler::semv(b, disc->b, p[1]);
+  ASSERT_TRUE(s1);
+  auto s2 = euler::semv(b, s1->next, p[2]);
+  ASSERT_TRUE(s2);
+  for (HalfedgeH h : b.loop_halfedges(b.loop(disc->b))) {
+    const geo::Vec3 a = b.point(b.origin(halfedge_of(edge_of(h), 0))), c = b.point(b.target(halfedge_of(edge_of(h), 0)));
+    b.set_curve(edge_of(h), geo::Line{a, (c - a).normalized()});
+  }
+}
+
+FaceH face_where(const Body& b, const std::function<bool(const geo::Vec3&)>& all_corners) {
+  for (FaceH f : b.faces()) {
+    bool all = true;
+    for (VertexH v : b.loop_vertices(b.outer_loop(f))) all = all && all_corners(b.point(v));
+    if (all) return f;
+  }
+  return {};
+}
+
+// A hole that crosses no loop but lies outside its face (OpenCASCADE: the wires'
+// imbrication is invalid): the zoo once put a scan gap on a cone's surface beyond the
+// chamfer band it was meant for. Inside, no complaint; outside, hole_outside.
+TEST(RegionValidity, AHoleOutsideItsFaceIsFound) {
+  for (bool outside : {false, true}) {
+    Body b = build::box(1, 1, 1);
+    const FaceH top = face_where(b, [](const geo::Vec3& p) { return p.z() > 0.5; });
+    ASSERT_TRUE(top.valid());
+    const double x0 = outside ? 1.5 : 0.4;
+    add_triangle_ring(b, top, {geo::Vec3(x0, 0.4, 1), geo::Vec3(x0 + 0.2, 0.4, 1), geo::Vec3(x0 + 0.1, 0.6, 1)});
+    auto v = loop_violations(b, {top}, kTol);
+    EXPECT_EQ(has(v, "hole_outside"), outside) << list(v);
+  }
+  // On a cylinder's side a hole is inside for some shift of the angle by 2π.
+  for (double z : {1.0, 2.5}) {
+    Body b = build::cylinder(1, 2);
+    FaceH side;
+    for (FaceH f : b.faces())
+      if (std::holds_alternative<geo::Cylinder>(b.surface(f))) side = f;
+    auto at = [&](double degrees, double h) {
+      const double a = degrees * M_PI / 180;
+      return geo::Vec3(std::cos(a), std::sin(a), h);
+    };
+    add_triangle_ring(b, side, {at(-100, z), at(-90, z), at(-95, z + 0.1)});
+    auto v = loop_violations(b, {side}, kTol);
+    EXPECT_EQ(has(v, "hole_outside"), z > 2) << "at z " << z << "\n" << list(v);
+  }
 }
 
 TEST(RegionValidity, AWrongSenseIsFoundOnPlanesAndCylinders) {

@@ -16,6 +16,7 @@
 #include "invariants/element_geometry.h"
 #include "invariants/topology_check.h"
 #include "invariants/region_validity.h"
+#include "io/native_json.h"
 #include "io/occt/exchange.h"
 #include "repair/beautify.h"
 #include "repair/detect.h"
@@ -233,6 +234,8 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   };
   std::string path = test::temp_path("scan_" + std::to_string(seed) + ".step"), err;
   if (!io::export_cad(b, path, io::CadFormat::step, &err)) return fail(Verdict::step, "write: " + err);
+  if (std::getenv("KINTSUGI_SCAN_KEEP"))  // the defective model as made, beside the STEP file
+    io::write_native_file(path + ".json", b, nlohmann::json::object(), "mm", &err);
   std::optional<io::CadImport> in = io::import_cad(path, io::CadFormat::step, &err);
   if (!std::getenv("KINTSUGI_SCAN_KEEP")) std::remove(path.c_str());  // kept: to look at one case
   if (!in) return fail(Verdict::step, "read: " + err);

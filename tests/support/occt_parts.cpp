@@ -11,6 +11,8 @@
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepPrimAPI_MakeWedge.hxx>
 #include <BRep_Tool.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Curve.hxx>
 #include <Precision.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
@@ -173,6 +175,51 @@ TopoDS_Shape roofed_block() {
   return fuse(box(0, 0, 0, 100, 100, 40), roof);
 }
 
+// A tee: a pipe stub r 14 standing on a bar r 20, 120 long (their edge is where two
+// cylinders of different radii meet: a B-spline curve), the bar's ends chamfered 3.
+TopoDS_Shape tee() {
+  TopoDS_Shape bar = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-60, 0, 0), gp::DX()), 20, 120).Shape();
+  TopoDS_Shape s = fuse(bar, zcyl(0, 0, 0, 14, 45));
+  std::vector<TopoDS_Edge> ends;
+  TopTools_IndexedMapOfShape m;
+  TopExp::MapShapes(s, TopAbs_EDGE, m);
+  for (int i = 1; i <= m.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(m(i));
+    double a, b;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
+    if (!c.IsNull() && std::abs(std::abs(c->Value(0.5 * (a + b)).X()) - 60) < 1e-6) ends.push_back(e);
+  }
+  return chamfer(s, ends, 3);
+}
+
+// A post r 25, 50 high, on a plate 100 x 100 x 12, with its top edge filleted r 6 (a
+// torus between the post's side and its top, tangent to both) and its foot filleted r 4.
+TopoDS_Shape filleted_post() {
+  TopoDS_Shape s = fuse(box(-50, -50, 0, 100, 100, 12), zcyl(0, 0, 12, 25, 50));
+  std::vector<TopoDS_Edge> rims;
+  TopTools_IndexedMapOfShape m;
+  TopExp::MapShapes(s, TopAbs_EDGE, m);
+  for (int i = 1; i <= m.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(m(i));
+    double a, b;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
+    if (c.IsNull() || !c->IsKind(STANDARD_TYPE(Geom_Circle))) continue;
+    const double z = c->Value(a).Z();
+    if (std::abs(z - 62) < 1e-6) rims.push_back(e);
+  }
+  s = fillet(s, rims, 6);
+  std::vector<TopoDS_Edge> foot;
+  TopTools_IndexedMapOfShape m2;
+  TopExp::MapShapes(s, TopAbs_EDGE, m2);
+  for (int i = 1; i <= m2.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(m2(i));
+    double a, b;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
+    if (!c.IsNull() && c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - 12) < 1e-6) foot.push_back(e);
+  }
+  return fillet(s, foot, 4);
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -189,6 +236,8 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"filleted_block", filleted_block},
       {"domed_post", domed_post},
       {"roofed_block", roofed_block},
+      {"tee", tee},
+      {"filleted_post", filleted_post},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
