@@ -266,6 +266,34 @@ double period(const Curve& c) {
   return 0.0;
 }
 
+Polyline polyline_piece(const Polyline& p, double t0, double t1) {
+  Polyline out;
+  out.chordal_error = p.chordal_error;
+  if (p.points.size() < 2) return p;
+  const std::vector<double> s = cumulative(p);
+  const double len = s.back();
+  const bool closed = is_closed(Curve{p});
+  auto at = [&](double t) {
+    if (closed && len > 0) t = std::fmod(std::fmod(t, len) + len, len);
+    return evaluate(Curve{p}, t);
+  };
+  out.points.push_back(at(t0));
+  if (t1 >= t0) {
+    // The inner points met going forward, through the first point again on a closed one.
+    for (int lap = 0; lap < (closed ? 2 : 1); ++lap)
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        if (closed && lap == 1 && i == 0) continue;  // the first point is the last
+        const double t = s[i] + lap * len;
+        if (t > t0 && t < t1) out.points.push_back(p.points[i]);
+      }
+  } else {
+    for (std::size_t i = s.size(); i-- > 0;)
+      if (s[i] < t0 && s[i] > t1) out.points.push_back(p.points[i]);
+  }
+  out.points.push_back(at(t1));
+  return out;
+}
+
 ParameterRange parameter_range(const Curve& c, const Vec3& p0, const Vec3& p1, double coincide_tol) {
   // A B-spline that is closed without being periodic (an edge read from a file is its
   // curve trimmed to the edge): a closed edge is the whole curve.

@@ -47,6 +47,13 @@ double arc_length(const Curve& c, double t0, double t1);
 // Whole length; +infinity for a line.
 double curve_length(const Curve& c);
 
+// The piece of p between arc lengths t0 and t1, as a polyline of its own from p(t0) to
+// p(t1) (the chordal error kept). On a closed polyline t1 may lie up to one length past
+// t0: the piece runs on through the first point. t1 < t0 on an open one: the piece runs
+// backwards. An edge's polyline is the edge's own piece: the writer takes a polyline
+// whole, from its first point to its last.
+Polyline polyline_piece(const Polyline& p, double t0, double t1);
+
 // Points along [t0, t1] (in that order, both ends included) such that the polyline
 // through them is within `chordal_error` of the curve (at most 2^20 pieces, which is
 // within 5e-12 of a full circle's radius: a tighter error is not met). Circles are

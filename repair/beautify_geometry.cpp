@@ -128,6 +128,21 @@ bool still_on_both(const geo::Curve& old, const geo::Vec3& p0, const geo::Vec3& 
   return true;
 }
 
+// An intersection polyline cut to the edge's own piece, from p0 to p1 along it: a
+// marched branch is a closed loop or runs past the edge's vertices, and the writer takes
+// a polyline whole (two cylinders' loop joined from two halves at a mergeable vertex could
+// not be written: "different points on a closed curve"). Other curves are bounded by the
+// vertices already.
+geo::Curve own_piece(const geo::Curve& c, const geo::Vec3& p0, const geo::Vec3& p1, bool closed) {
+  const auto* pl = std::get_if<geo::Polyline>(&c);
+  if (!pl || closed) return c;
+  const geo::ParameterRange r = geo::parameter_range(c, p0, p1);
+  geo::Polyline piece = geo::polyline_piece(*pl, r.t0, r.t1);
+  piece.points.front() = p0;
+  piece.points.back() = p1;
+  return piece;
+}
+
 }  // namespace
 
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched) {
@@ -285,13 +300,13 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     };
     if (along.size() >= 2) {
       if (ahead(c, mid) > ahead(c, p1)) c = reversed(c);
-      return c;
+      return own_piece(c, p0, p1, closed);
     }
   }
   geo::Vec3 want = (p1 - p0);
   if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
   if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);
-  return c;
+  return own_piece(c, p0, p1, closed);
 }
 
 std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol) {

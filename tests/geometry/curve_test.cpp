@@ -56,6 +56,28 @@ TEST(Curve, LineAndPolylineLengths) {
   EXPECT_NEAR(c.distance, 1.0, 1e-15);
 }
 
+// A closed square's piece from the middle of one side, on past the first point, to the
+// middle of the next-but-one side; an open polyline's piece forwards and backwards.
+TEST(Curve, PolylinePieceRunsBetweenItsParameters) {
+  Polyline sq{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(0, 0, 0)}, 0.25};
+  Polyline p = polyline_piece(sq, 3.5, 5.5);  // (0, 0.5) -> (0,0) -> (1,0) -> (1, 0.5)
+  ASSERT_EQ(p.points.size(), 4u);
+  EXPECT_TRUE(p.points[0].isApprox(Vec3(0, 0.5, 0)));
+  EXPECT_TRUE(p.points[1].isApprox(Vec3(0, 0, 0)));
+  EXPECT_TRUE(p.points[2].isApprox(Vec3(1, 0, 0)));
+  EXPECT_TRUE(p.points[3].isApprox(Vec3(1, 0.5, 0)));
+  EXPECT_EQ(p.chordal_error, 0.25);
+  EXPECT_NEAR(curve_length(Curve{p}), 2.0, 1e-12);
+  Polyline open{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0)}, 0};
+  Polyline fwd = polyline_piece(open, 0.5, 2.5), back = polyline_piece(open, 2.5, 0.5);
+  ASSERT_EQ(fwd.points.size(), 4u);
+  EXPECT_TRUE(fwd.points.front().isApprox(Vec3(0.5, 0, 0)));
+  EXPECT_TRUE(fwd.points.back().isApprox(Vec3(2.5, 0, 0)));
+  ASSERT_EQ(back.points.size(), 4u);
+  EXPECT_TRUE(back.points[1].isApprox(Vec3(2, 0, 0)));
+  EXPECT_TRUE(back.points.back().isApprox(Vec3(0.5, 0, 0)));
+}
+
 TEST(Curve, SamplingRespectsChordalError) {
   const Circle c{Frame{}, 10.0};
   const std::vector<Vec3> pts = sample_curve(c, 0.0, kTwoPi, 1e-3);
