@@ -219,6 +219,12 @@ SurfaceIntersection intersect_surfaces(const Surface& a, const Surface& b, const
   return detail::intersect_march(a, b, o);
 }
 
+std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision) {
+  const FreeformBackend* fb = freeform_backend();
+  if (!fb) return {};
+  return fb->intersect(a, b, precision);
+}
+
 std::vector<Curve> intersect(const Surface& a, const Surface& b, const IntersectOptions& o) {
   SurfaceIntersection r = intersect_surfaces(a, b, o);
   return r.kind == IntersectionKind::curves ? std::move(r.curves) : std::vector<Curve>{};

@@ -67,6 +67,14 @@ SurfaceIntersection intersect_surfaces(const Surface& a, const Surface& b, const
 // Just the curves (empty for empty / coincident / failed).
 std::vector<Curve> intersect(const Surface& a, const Surface& b, const IntersectOptions& options);
 
+// The intersection curves as the free-form backend computes them (OpenCASCADE's
+// GeomAPI_IntSS; B-spline curves within about `precision` of both surfaces), for any two
+// surfaces, analytic ones too; empty without a backend or when it finds nothing. Where
+// intersect() marches (no closed form), its polylines are 0.01 tol off the surfaces
+// between their points, which a written file keeps; an edge can take one of these
+// instead (repair/beautify_geometry.cpp, derive_edge_curve).
+std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision);
+
 struct BranchChoice {
   std::size_t index = 0;
   double distance = 0.0;  // max of the two end points' distances to the branch

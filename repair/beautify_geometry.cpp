@@ -143,6 +143,35 @@ geo::Curve own_piece(const geo::Curve& c, const geo::Vec3& p0, const geo::Vec3& 
   return piece;
 }
 
+// In place of a marched polyline (0.01 tol off the surfaces between its points, which a
+// written file keeps, and which the validity gate therefore measures), the backend's
+// intersection curve through both vertices, when there is one that runs through them and
+// lies on both surfaces to the modelling precision along the edge (17 points); else the
+// polyline. Its direction is the polyline's.
+geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, const geo::Surface& sg,
+                           const geo::Vec3& p0, const geo::Vec3& p1, bool closed, const geo::Tolerances& tol) {
+  if (!std::holds_alternative<geo::Polyline>(marched) || closed) return marched;
+  const std::vector<geo::Curve> exact = geo::intersect_exact(sf, sg, tol.precision);
+  for (const geo::Curve& c : exact) {
+    if (std::holds_alternative<geo::Polyline>(c) || std::holds_alternative<std::monostate>(c)) continue;
+    if (geo::closest_point(c, p0).distance > tol.precision || geo::closest_point(c, p1).distance > tol.precision)
+      continue;
+    const geo::ParameterRange r = geo::parameter_range(c, p0, p1);
+    if (!(r.t0 != r.t1)) continue;
+    bool on = true;
+    for (int i = 0; i <= 16 && on; ++i) {
+      const geo::Vec3 q = geo::evaluate(c, r.t0 + (r.t1 - r.t0) * i / 16.0);
+      on = std::abs(geo::signed_distance(sf, q)) <= tol.precision && std::abs(geo::signed_distance(sg, q)) <= tol.precision;
+    }
+    if (!on) continue;
+    // The same arc as the polyline: its middle near the polyline's.
+    const geo::Vec3 mid = geo::evaluate(c, 0.5 * (r.t0 + r.t1));
+    if (geo::closest_point(marched, mid).distance > tol.length) continue;
+    return c;
+  }
+  return marched;
+}
+
 }  // namespace
 
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched) {
@@ -300,13 +329,13 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     };
     if (along.size() >= 2) {
       if (ahead(c, mid) > ahead(c, p1)) c = reversed(c);
-      return own_piece(c, p0, p1, closed);
+      return precise_instead(own_piece(c, p0, p1, closed), sf, sg, p0, p1, closed, tol);
     }
   }
   geo::Vec3 want = (p1 - p0);
   if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
   if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);
-  return own_piece(c, p0, p1, closed);
+  return precise_instead(own_piece(c, p0, p1, closed), sf, sg, p0, p1, closed, tol);
 }
 
 std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol) {
