@@ -36,6 +36,10 @@ std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, con
 // gives the seam the iso-curve there.
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched);
 
+// The frame of a surface periodic about an axis (u of spec/geometry.md, its seam at
+// u = 0 about frame.z): sphere, cylinder, cone, torus; null for the others.
+const geo::Frame* seam_frame(const geo::Surface& s);
+
 // Puts each vertex at the point nearest its guess where the surfaces of its faces meet
 // (geo::meet_point; least squares for more than three), then re-derives the curves of
 // every edge at those vertices. Fails when the surfaces do not meet within tolerance or

@@ -72,14 +72,6 @@ geo::Polyline follow_vertices(const Body& b, const geo::Polyline& old, const geo
   return out;
 }
 
-// The frame of a surface with a seam at u = 0 about frame.z, or null.
-const geo::Frame* seam_frame(const geo::Surface& s) {
-  if (const auto* x = std::get_if<geo::Sphere>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Cylinder>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Cone>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Torus>(&s)) return &x->frame;
-  return nullptr;
-}
 
 // The seam's iso-curve through a vertex off the axis: a sphere's meridian circle, a
 // torus's tube circle at u = 0. nullopt for the others (their seams are lines).
@@ -173,6 +165,14 @@ geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, co
 }
 
 }  // namespace
+
+const geo::Frame* seam_frame(const geo::Surface& s) {
+  if (const auto* x = std::get_if<geo::Sphere>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Cylinder>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Cone>(&s)) return &x->frame;
+  if (const auto* x = std::get_if<geo::Torus>(&s)) return &x->frame;
+  return nullptr;
+}
 
 void align_seams(Body& b, const std::vector<VertexH>& moved, const geo::Tolerances& tol, Touched& touched) {
   for (VertexH v : moved)

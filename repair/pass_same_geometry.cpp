@@ -33,15 +33,6 @@ std::vector<EdgeH> common_edges(const Body& b, FaceH f, FaceH g) {
   return out;
 }
 
-// The axis a surface is periodic about (the parameter u of spec/geometry.md), or null.
-const geo::Frame* axis_frame(const geo::Surface& s) {
-  if (const auto* x = std::get_if<geo::Cylinder>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Cone>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Sphere>(&s)) return &x->frame;
-  if (const auto* x = std::get_if<geo::Torus>(&s)) return &x->frame;
-  return nullptr;
-}
-
 // Whether the half-edges from next(h) to prev(twin(h)) — the loop kemr(h) would make —
 // go once round the axis of the face's surface. Then edge_of(h) is not a bridge to an
 // inner boundary but the face's seam: two faces of one cylinder split along two rulings
@@ -49,7 +40,7 @@ const geo::Frame* axis_frame(const geo::Surface& s) {
 // itself the way a seam does. Made into a ring instead, it left a cylinder bounded by two
 // circles and no seam, which OpenCASCADE cannot orient.
 bool goes_round_axis(const Body& b, HalfedgeH h, const geo::Surface& s, const geo::Tolerances& tol) {
-  const geo::Frame* frame = axis_frame(s);
+  const geo::Frame* frame = seam_frame(s);
   if (!frame) return false;
   const geo::Vec3 x = frame->x, y = frame->y();
   double turn = 0, last = 0;

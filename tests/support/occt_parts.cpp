@@ -76,6 +76,21 @@ std::vector<TopoDS_Edge> edges_where(const TopoDS_Shape& s, const gp_Dir& dir, P
   return out;
 }
 
+// The edges of s whose 3D curve (with its range) satisfies `pick`.
+template <class Pick>
+std::vector<TopoDS_Edge> curve_edges_where(const TopoDS_Shape& s, Pick pick) {
+  std::vector<TopoDS_Edge> out;
+  TopTools_IndexedMapOfShape m;
+  TopExp::MapShapes(s, TopAbs_EDGE, m);
+  for (int i = 1; i <= m.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(m(i));
+    double a, b;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
+    if (!c.IsNull() && pick(c, a, b)) out.push_back(e);
+  }
+  return out;
+}
+
 TopoDS_Shape fillet(const TopoDS_Shape& s, const std::vector<TopoDS_Edge>& edges, double r) {
   if (edges.empty()) throw std::runtime_error("no edges to fillet");
   BRepFilletAPI_MakeFillet f(s);
@@ -180,44 +195,23 @@ TopoDS_Shape roofed_block() {
 TopoDS_Shape tee() {
   TopoDS_Shape bar = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-60, 0, 0), gp::DX()), 20, 120).Shape();
   TopoDS_Shape s = fuse(bar, zcyl(0, 0, 0, 14, 45));
-  std::vector<TopoDS_Edge> ends;
-  TopTools_IndexedMapOfShape m;
-  TopExp::MapShapes(s, TopAbs_EDGE, m);
-  for (int i = 1; i <= m.Extent(); ++i) {
-    const TopoDS_Edge& e = TopoDS::Edge(m(i));
-    double a, b;
-    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
-    if (!c.IsNull() && std::abs(std::abs(c->Value(0.5 * (a + b)).X()) - 60) < 1e-6) ends.push_back(e);
-  }
-  return chamfer(s, ends, 3);
+  return chamfer(s, curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double b) {
+                   return std::abs(std::abs(c->Value(0.5 * (a + b)).X()) - 60) < 1e-6;
+                 }),
+                 3);
 }
 
 // A post r 25, 50 high, on a plate 100 x 100 x 12, with its top edge filleted r 6 (a
 // torus between the post's side and its top, tangent to both) and its foot filleted r 4.
 TopoDS_Shape filleted_post() {
+  auto circle_at = [](double z) {
+    return [z](const Handle(Geom_Curve)& c, double a, double) {
+      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6;
+    };
+  };
   TopoDS_Shape s = fuse(box(-50, -50, 0, 100, 100, 12), zcyl(0, 0, 12, 25, 50));
-  std::vector<TopoDS_Edge> rims;
-  TopTools_IndexedMapOfShape m;
-  TopExp::MapShapes(s, TopAbs_EDGE, m);
-  for (int i = 1; i <= m.Extent(); ++i) {
-    const TopoDS_Edge& e = TopoDS::Edge(m(i));
-    double a, b;
-    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
-    if (c.IsNull() || !c->IsKind(STANDARD_TYPE(Geom_Circle))) continue;
-    const double z = c->Value(a).Z();
-    if (std::abs(z - 62) < 1e-6) rims.push_back(e);
-  }
-  s = fillet(s, rims, 6);
-  std::vector<TopoDS_Edge> foot;
-  TopTools_IndexedMapOfShape m2;
-  TopExp::MapShapes(s, TopAbs_EDGE, m2);
-  for (int i = 1; i <= m2.Extent(); ++i) {
-    const TopoDS_Edge& e = TopoDS::Edge(m2(i));
-    double a, b;
-    Handle(Geom_Curve) c = BRep_Tool::Curve(e, a, b);
-    if (!c.IsNull() && c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - 12) < 1e-6) foot.push_back(e);
-  }
-  return fillet(s, foot, 4);
+  s = fillet(s, curve_edges_where(s, circle_at(62)), 6);
+  return fillet(s, curve_edges_where(s, circle_at(12)), 4);
 }
 
 }  // namespace
