@@ -72,7 +72,6 @@ geo::Polyline follow_vertices(const Body& b, const geo::Polyline& old, const geo
   return out;
 }
 
-
 // The seam's iso-curve through a vertex off the axis: a sphere's meridian circle, a
 // torus's tube circle at u = 0. nullopt for the others (their seams are lines).
 std::optional<geo::Circle> seam_circle(const geo::Surface& s) {
@@ -95,29 +94,35 @@ std::optional<geo::Circle> seam_circle(const geo::Surface& s) {
   return std::nullopt;
 }
 
-// Whether the edge's present curve still runs through both its vertices and lies on the
-// surfaces of both its faces, to the modelling precision: then it is their intersection
-// already, and is kept. Intersecting again would find the same curve, except where the
-// surfaces are tangent along the edge (a fillet's or a blend's boundary), where the
-// intersection is a double root the marcher misses: on OpenCASCADE's Top.brep the merge
-// of two faces of one torus was refused because the torus did not meet the fillet beside
-// it along their common edge. Scanned polylines are not kept (a polyline between curved
-// faces lies on them at its points only; the repair replaces it by the intersection).
-bool still_on_both(const geo::Curve& old, const geo::Vec3& p0, const geo::Vec3& p1, bool closed,
-                   const geo::Surface& sf, const geo::Surface& sg, const geo::Tolerances& tol) {
-  if (std::holds_alternative<std::monostate>(old) || std::holds_alternative<geo::Polyline>(old)) return false;
-  if (geo::closest_point(old, p0).distance > tol.precision || geo::closest_point(old, p1).distance > tol.precision)
+// Whether c runs through p0 and p1 and lies on both surfaces between them (17 points from
+// end to end), to the modelling precision.
+bool on_both_between(const geo::Curve& c, const geo::Vec3& p0, const geo::Vec3& p1, bool closed,
+                     const geo::Surface& sf, const geo::Surface& sg, const geo::Tolerances& tol) {
+  if (geo::closest_point(c, p0).distance > tol.precision || geo::closest_point(c, p1).distance > tol.precision)
     return false;
-  const geo::ParameterRange r = geo::parameter_range(old, p0, p1, closed ? tol.precision : 0.0);
+  const geo::ParameterRange r = geo::parameter_range(c, p0, p1, closed ? tol.precision : 0.0);
   if (!(r.t0 != r.t1)) return false;
-  // On both surfaces at 17 points from end to end.
   constexpr int kInside = 16;
   for (int i = 0; i <= kInside; ++i) {
-    const geo::Vec3 q = geo::evaluate(old, r.t0 + (r.t1 - r.t0) * double(i) / kInside);
+    const geo::Vec3 q = geo::evaluate(c, r.t0 + (r.t1 - r.t0) * double(i) / kInside);
     if (std::abs(geo::signed_distance(sf, q)) > tol.precision || std::abs(geo::signed_distance(sg, q)) > tol.precision)
       return false;
   }
   return true;
+}
+
+// Whether the edge's present curve still runs through both its vertices and lies on the
+// surfaces of both its faces: then it is their intersection already, and is kept.
+// Intersecting again would find the same curve, except where the surfaces are tangent
+// along the edge (a fillet's or a blend's boundary), where the intersection is a double
+// root the marcher misses: on OpenCASCADE's bottle.brep every merge of two faces of one
+// fillet was refused because the fillet did not meet its tangent neighbour along their
+// common edge. Scanned polylines are not kept (a polyline between curved faces lies on
+// them at its points only; the repair replaces it by the intersection).
+bool still_on_both(const geo::Curve& old, const geo::Vec3& p0, const geo::Vec3& p1, bool closed,
+                   const geo::Surface& sf, const geo::Surface& sg, const geo::Tolerances& tol) {
+  return !std::holds_alternative<std::monostate>(old) && !std::holds_alternative<geo::Polyline>(old) &&
+         on_both_between(old, p0, p1, closed, sf, sg, tol);
 }
 
 // An intersection polyline cut to the edge's own piece, from p0 to p1 along it: a
@@ -137,29 +142,17 @@ geo::Curve own_piece(const geo::Curve& c, const geo::Vec3& p0, const geo::Vec3& 
 
 // In place of a marched polyline (0.01 tol off the surfaces between its points, which a
 // written file keeps, and which the validity gate therefore measures), the backend's
-// intersection curve through both vertices, when there is one that runs through them and
-// lies on both surfaces to the modelling precision along the edge (17 points); else the
-// polyline. Its direction is the polyline's.
+// intersection curve that runs through both vertices and lies on both surfaces between
+// them, on the polyline's arc (its middle near the polyline); else the polyline.
 geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, const geo::Surface& sg,
                            const geo::Vec3& p0, const geo::Vec3& p1, bool closed, const geo::Tolerances& tol) {
   if (!std::holds_alternative<geo::Polyline>(marched) || closed) return marched;
-  const std::vector<geo::Curve> exact = geo::intersect_exact(sf, sg, tol.precision);
-  for (const geo::Curve& c : exact) {
-    if (std::holds_alternative<geo::Polyline>(c) || std::holds_alternative<std::monostate>(c)) continue;
-    if (geo::closest_point(c, p0).distance > tol.precision || geo::closest_point(c, p1).distance > tol.precision)
+  for (const geo::Curve& c : geo::intersect_exact(sf, sg, tol.precision)) {
+    if (std::holds_alternative<geo::Polyline>(c) || std::holds_alternative<std::monostate>(c) ||
+        !on_both_between(c, p0, p1, false, sf, sg, tol))
       continue;
     const geo::ParameterRange r = geo::parameter_range(c, p0, p1);
-    if (!(r.t0 != r.t1)) continue;
-    bool on = true;
-    for (int i = 0; i <= 16 && on; ++i) {
-      const geo::Vec3 q = geo::evaluate(c, r.t0 + (r.t1 - r.t0) * i / 16.0);
-      on = std::abs(geo::signed_distance(sf, q)) <= tol.precision && std::abs(geo::signed_distance(sg, q)) <= tol.precision;
-    }
-    if (!on) continue;
-    // The same arc as the polyline: its middle near the polyline's.
-    const geo::Vec3 mid = geo::evaluate(c, 0.5 * (r.t0 + r.t1));
-    if (geo::closest_point(marched, mid).distance > tol.length) continue;
-    return c;
+    if (geo::closest_point(marched, geo::evaluate(c, 0.5 * (r.t0 + r.t1))).distance <= tol.length) return c;
   }
   return marched;
 }
