@@ -277,6 +277,10 @@ RegionMeasure measure_region(const Surface& s, const std::vector<std::vector<Vec
         }
     const bool flip = orientation((t[0] + t[1] + t[2]) / 3) < 0;
     auto piece = [&](const Vec2& a, const Vec2& b, const Vec2& c, int ia, int ib, int ic) {
+      if (o.mesh_only && !fast) {
+        out.mesh.triangles.push_back(flip ? std::array<int, 3>{ia, ic, ib} : std::array<int, 3>{ia, ib, ic});
+        return;
+      }
       const double jac = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
       for (std::size_t q = 0; q < rule.weight.size(); ++q) {
         const Vec2 uv = rule.bary[q][0] * a + rule.bary[q][1] * b + rule.bary[q][2] * c;

@@ -44,6 +44,11 @@ struct AreaOptions {
   // at a cone's apex, added when the region reaches it), so the region lies in the
   // boundary's convex hull.
   bool area_and_bounds_only = false;
+  // Only the tessellation (and the bounds) are wanted: the same triangles, but no
+  // quadrature, so area and centroid are left zero. The quadrature evaluates the surface
+  // fourteen times a triangle; a sphere's or torus's thousands of grid triangles cost 40
+  // ms, most of the zoo's time choosing where a face gap goes.
+  bool mesh_only = false;
   // Free-form surfaces: the region's parameter box is split into this many cells a side
   // for Steiner points (add_grid), so that the triangles are small where the area element
   // varies. Detection's coarse pass, which only has to show a face far from small and

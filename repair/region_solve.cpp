@@ -171,13 +171,15 @@ thread_local SolveMemo<RegionSolve> g_failed_solves;
 // times.
 thread_local SolveMemo<SolveOutcome> g_succeeded_solves;
 
-// Above this many unknowns the solve uses sparse normal equations (Eigen's sparse
-// Cholesky through Ceres) instead of a dense QR, whose cost grows with the residuals
-// times the unknowns squared: a sliver's region on OpenCASCADE's Top.brep (hundreds of
-// vertices) spent 14 of beautify's 15.5 s in the QR. Each residual touches one surface
-// and at most one vertex, so the normal equations stay sparse. Smaller problems, nearly
-// all of them, keep the QR, which is better conditioned under the hard weight.
-constexpr int kMaxDenseParameters = 120;
+// Every solve uses sparse normal equations (Eigen's or SuiteSparse's Cholesky through
+// Ceres). Each residual touches one surface and at most one vertex, so they stay sparse.
+// A dense QR, kept once for problems under 120 unknowns as better conditioned under the
+// hard weight, cost the residuals times the unknowns squared: three quarters of the Table
+// 1 audit's repair time (a region of 30 vertices has ~100 unknowns), and on Top.brep a
+// sliver's region of hundreds of vertices spent 14 of beautify's 15.5 s in it. The
+// continuation below keeps the normal equations' conditioning in hand; outcomes were the
+// same on the audit (one trial in 440 flipped a borderline cell), the scan parts and the
+// sample parts (docs/benchmarks.md, "The region solve's linear solver").
 
 using geo::fnv_mix;
 
@@ -409,7 +411,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       }
     }
     ceres::Solver::Options options;
-    options.linear_solver_type = problem.NumParameters() > kMaxDenseParameters ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::DENSE_QR;
+    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     options.max_num_iterations = 100;
     options.function_tolerance = 1e-14;
     options.gradient_tolerance = 1e-20;

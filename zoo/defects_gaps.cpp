@@ -1,5 +1,6 @@
 #include "zoo/defects_gaps.h"
 
+#include "geometry/area.h"
 #include "geometry/curve.h"
 #include "geometry/distance.h"
 #include "geometry/surface.h"
@@ -320,6 +321,52 @@ KnownDefect scan_gap_at_vertex(Body& b, VertexH v, const MissingRegion& r, int p
 
 }  // namespace make
 
+namespace {
+
+// The point of face f farthest from its edges, among its area centroid and the centres
+// of its tessellation's triangles (on the surface); Unsuitable when f cannot be measured.
+Vec3 roomiest_point(const Body& b, FaceH f, double tol) {
+  auto bound = face_boundary(b, f, 1e-3 * tol);
+  // A plane's centroid needs its area; a curved face's tessellation alone will do, and a
+  // coarse one (0.2 rad a triangle: about a thousand on a whole torus) spreads candidates
+  // far closer than any face is wide. At measure_region's default 0.05 rad, 16 times the
+  // triangles, choosing the spot was half the Table 1 audit's time.
+  geo::AreaOptions o;
+  o.reversed = !b.same_sense(f);
+  o.mesh_only = !std::holds_alternative<geo::Plane>(b.surface(f));
+  o.max_angle_step = 0.2;
+  const geo::RegionMeasure m = geo::measure_region(b.surface(f), bound, o);
+  if (!m.ok()) throw Unsuitable(f.str() + " cannot be measured: " + m.problem);
+  // At most about 1024 triangles, evenly spread over the tessellation: a curved face's
+  // has thousands, and the gap needs room, not the exact farthest point. (Every triangle
+  // against every boundary segment took over a minute on a builder cone under the
+  // sanitizers: a fuzz_beautify timeout.)
+  // The centroid only of a planar face: a curved face's (a cone's band, a cylinder's side)
+  // is off the face, and its foot on the surface can be outside the face, where a hole
+  // 3D-far from every edge passed for roomy (the scan-parts score, a tee's chamfer; region
+  // validity now refuses such a hole: hole_outside).
+  std::vector<Vec3> candidates;
+  if (std::holds_alternative<geo::Plane>(b.surface(f))) candidates.push_back(m.centroid);
+  const std::size_t stride = 1 + m.mesh.triangles.size() / 1024;
+  for (std::size_t t = 0; t < m.mesh.triangles.size(); t += stride) {
+    const auto& tri = m.mesh.triangles[t];
+    candidates.push_back((m.mesh.vertices[std::size_t(tri[0])] + m.mesh.vertices[std::size_t(tri[1])] +
+                          m.mesh.vertices[std::size_t(tri[2])]) / 3.0);
+  }
+  Vec3 best = Vec3::Zero();
+  double room = 0;
+  for (const Vec3& c : candidates) {
+    Vec3 p = geo::closest_point(b.surface(f), c).point;
+    double d = 1e300;
+    for (const auto& l : bound) d = std::min(d, geo::point_polyline(p, l).distance);
+    if (d > room) room = d, best = p;
+  }
+  if (room <= 0) throw Unsuitable(f.str() + " has no room for a gap");
+  return best;
+}
+
+}  // namespace
+
 std::vector<GapSite> gap_sites(const Body& b, ProblemType t, double tol, Rng& rng, const std::vector<FaceH>& faces,
                                const std::vector<EdgeH>& edges, const std::vector<VertexH>& vertices) {
   std::vector<GapSite> out;
@@ -328,41 +375,20 @@ std::vector<GapSite> gap_sites(const Body& b, ProblemType t, double tol, Rng& rn
   switch (t) {
     case ProblemType::face_gap:
       for (FaceH f : faces) {
-        // The point of the face farthest from its edges, among its area centroid and the
-        // centres of its tessellation's triangles (on the surface).
         if (std::holds_alternative<std::monostate>(b.surface(f))) continue;
-        geo::RegionMeasure m = face_measure(b, f, 1e-3 * tol);
-        if (!m.ok()) continue;
-        auto bound = face_boundary(b, f, 1e-3 * tol);
-        // At most about 1024 triangles, evenly spread over the tessellation: a curved
-        // face's has thousands, and the gap needs room, not the exact farthest point.
-        // (Every triangle against every boundary segment took over a minute on a builder
-        // cone under the sanitizers: a fuzz_beautify timeout.)
-        // The centroid only of a planar face: a curved face's (a cone's band, a cylinder's
-        // side) is off the face, and its foot on the surface can be outside the face, where
-        // a hole 3D-far from every edge passed for roomy (the scan-parts score, a tee's
-        // chamfer; region validity now refuses such a hole: hole_outside).
-        std::vector<Vec3> candidates;
-        if (std::holds_alternative<geo::Plane>(b.surface(f))) candidates.push_back(m.centroid);
-        const std::size_t stride = 1 + m.mesh.triangles.size() / 1024;
-        for (std::size_t t = 0; t < m.mesh.triangles.size(); t += stride) {
-          const auto& tri = m.mesh.triangles[t];
-          candidates.push_back((m.mesh.vertices[std::size_t(tri[0])] + m.mesh.vertices[std::size_t(tri[1])] +
-                                m.mesh.vertices[std::size_t(tri[2])]) / 3.0);
-        }
-        Vec3 best = Vec3::Zero();
-        double room = 0;
-        for (const Vec3& c : candidates) {
-          Vec3 p = geo::closest_point(b.surface(f), c).point;
-          double d = 1e300;
-          for (const auto& l : bound) d = std::min(d, geo::point_polyline(p, l).distance);
-          if (d > room) room = d, best = p;
-        }
-        if (room <= 0) continue;
-        MissingRegion r = MissingRegion::random(shape(), best, across(), rng);
-        r.centre += outward_at(b, f, best) * rng.uniform(-0.2, 0.2) * r.radius;  // not always centred on the surface
+        // The region's size, shape and offset are drawn now, in the order they always were
+        // (a recipe's seed rebuilds the same model); where on the face it goes is found
+        // only when this site is tried: measuring every face up front was most of the
+        // Table 1 audit's time, for the one site used.
+        MissingRegion r = MissingRegion::random(shape(), Vec3::Zero(), across(), rng);
+        const double off_surface = rng.uniform(-0.2, 0.2);  // not always centred on the surface
         int n = 1 + int(rng.below(4));
-        out.push_back({[=](Body& x) { return make::scan_gap_in_face(x, f, r, n); },
+        out.push_back({[=](Body& x) {
+                         MissingRegion placed = r;
+                         placed.centre = roomiest_point(x, f, tol);
+                         placed.centre += outward_at(x, f, placed.centre) * off_surface * placed.radius;
+                         return make::scan_gap_in_face(x, f, placed, n);
+                       },
                        f.str() + " (" + shape_name(r.shape) + ")"});
       }
       break;
