@@ -53,6 +53,13 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
   out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
+  if (std::any_of(out.created.begin(), out.created.end(),
+                  [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {
+    const Detection tighter = detect(b, geo::Tolerances::for_model(kFlipMargin * built->tolerance, size_of(b)));
+    for (const Problem& p : out.created)
+      if (verdict(p.type, r.pass) == Verdict::counterexample && !existed_before(p, tighter.problems))
+        out.near_threshold.push_back(p);
+  }
   return out;
 }
 
@@ -148,7 +155,7 @@ Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still) {
 Result run(const Options& o) {
   const auto start = std::chrono::steady_clock::now();
   Result res;
-  std::array<std::array<bool, 11>, 11> recorded{};
+  std::array<std::array<bool, 11>, 11> recorded{}, recorded_flip{};
   for (const Pass* pass : passes()) {
     if (o.pass && *o.pass != pass->type) continue;
     // One generator per pass, seeded from the run's seed and the pass: a pass's trials do
@@ -168,20 +175,37 @@ Result run(const Options& o) {
       }
       res.trials[idx(pass->type)]++;
       std::set<ProblemType> seen;
+      // A created type is a flip in this trial when every problem of it is.
+      auto flip_only = [&t](ProblemType type) {
+        bool any = false;
+        for (const Problem& q : t.created)
+          if (q.type == type) {
+            if (!existed_before(q, t.near_threshold)) return false;
+            any = true;
+          }
+        return any;
+      };
       for (const Problem& p : t.created) {
         if (!seen.insert(p.type).second) continue;
         res.cells[idx(p.type)][idx(pass->type)]++;
+        const bool flip = flip_only(p.type);
+        if (flip) res.flips[idx(p.type)][idx(pass->type)]++;
+        // One finding per cell; a cell with flips only keeps looking for a counterexample.
         bool& done = recorded[idx(p.type)][idx(pass->type)];
-        if (done) continue;
-        done = true;
+        bool& flip_done = recorded_flip[idx(p.type)][idx(pass->type)];
+        if (done || (flip && flip_done)) continue;
+        (flip ? flip_done : done) = true;
         const Verdict v = verdict(p.type, pass->type);
         const ProblemType created = p.type;
-        auto creates = [created, &o](const Recipe& c) {
+        // The shrunk recipe must still make the same kind of finding: a counterexample
+        // must not shrink into a flip, nor a flip into a counterexample.
+        auto creates = [created, flip, v, &o](const Recipe& c) {
           const TrialResult t = run_trial(c, o.beautify);
           if (!t.precondition) return false;
+          bool any = false, all_flips = true;
           for (const Problem& q : t.created)
-            if (q.type == created) return true;
-          return false;
+            if (q.type == created) any = true, all_flips = all_flips && existed_before(q, t.near_threshold);
+          return any && (v != Verdict::counterexample || all_flips == flip);
         };
         Finding f{created, r, p};
         if (o.shrink) {
@@ -194,7 +218,7 @@ Result run(const Options& o) {
             }
         }
         if (v == Verdict::counterexample)
-          res.counterexamples.push_back(f);
+          (flip ? res.threshold_flips : res.counterexamples).push_back(f);
         else if (v == Verdict::disagreement)
           res.disagreements.push_back(f);
         else
@@ -218,6 +242,7 @@ nlohmann::json to_json(const Result& r) {
                        {"created", problem_name(row)},
                        {"paper", paper_says_yes(row, col) ? "Yes" : "No"},
                        {"count", r.cells[idx(row)][idx(col)]},
+                       {"threshold_flips", r.flips[idx(row)][idx(col)]},
                        {"trials", r.trials[idx(col)]},
                        {"skipped", r.skipped[idx(col)]},
                        {"skipped_with_row_left", r.skipped_by[idx(row)][idx(col)]},
@@ -235,6 +260,7 @@ nlohmann::json to_json(const Result& r) {
   };
   return {{"cells", cells},
           {"counterexamples", findings(r.counterexamples)},
+          {"threshold_flips", findings(r.threshold_flips)},
           {"disagreements", findings(r.disagreements)},
           {"witnesses", findings(r.witnesses)},
           {"seconds", r.seconds}};

@@ -28,8 +28,16 @@ struct TrialResult {
   bool precondition = true;
   std::vector<ProblemType> left;    // the earlier types still there when the pass ran
   std::vector<Problem> created;     // present after the pass, not before it
+  // Those of `created` on or above the diagonal that are gone when the model after the
+  // pass is judged at 0.9 of the tolerance: a repair's refit moved a measure from above
+  // the tolerance to just below it (a threshold flip, docs/table1-audit.md), not a pass
+  // that broke the order, which makes its problem whatever the tolerance.
+  std::vector<Problem> near_threshold;
   std::string description;          // the injected defects
 };
+// The tolerance, as a fraction of the trial's, at which a created problem must still be
+// found to count as a counterexample rather than a threshold flip.
+inline constexpr double kFlipMargin = 0.9;
 TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
 
 // Whether `after` existed before the pass, as the same problem: the same kind of problem
@@ -81,7 +89,11 @@ struct Result {
   // skipped_by[type][pass]: skipped trials of the pass in which a problem of that earlier
   // type was left (a trial can count under several types).
   std::array<std::array<long, 11>, 11> skipped_by{};
+  // flips[row][col]: of cells[row][col], trials whose created problems of that type
+  // (on or above the diagonal) were all threshold flips (TrialResult::near_threshold).
+  std::array<std::array<long, 11>, 11> flips{};
   std::vector<Finding> counterexamples;  // one per cell, shrunk
+  std::vector<Finding> threshold_flips;  // one per cell, shrunk
   std::vector<Finding> disagreements;    // one per cell, shrunk
   std::vector<Finding> witnesses;        // one per "Yes" cell reached, shrunk
   double seconds = 0.0;
