@@ -123,6 +123,31 @@ TEST(RegionValidity, AHoleOutsideItsFaceIsFound) {
   }
 }
 
+// A cylinder's or cone's side with its seam killed (kemr: the band bounded by its two
+// circles, as pass 8 once left a side merged across its seam): topologically a fine
+// annulus, but neither circle closes in the parameter domain, and OpenCASCADE calls the
+// face's wires not closed. The sides with their seams, and a cone's cap through its apex
+// (which may jump a period there), are fine.
+TEST(RegionValidity, ASideWithoutItsSeamIsFound) {
+  for (Body b : {build::cylinder(1, 2), build::cone(1, 2), build::torus(3, 1), build::sphere(2)}) {
+    FaceH side;
+    for (FaceH f : b.faces())
+      if (!std::holds_alternative<geo::Plane>(b.surface(f))) side = f;
+    ASSERT_TRUE(side.valid());
+    EXPECT_FALSE(has(loop_violations(b, {side}, kTol), "loop_without_seam")) << list(loop_violations(b, {side}, kTol));
+    // The seam: the edge used twice in the side's loop.
+    HalfedgeH seam;
+    for (HalfedgeH h : b.loop_halfedges(b.outer_loop(side)))
+      if (b.face(twin(h)) == side && !b.is_border(twin(h))) seam = h;
+    if (!std::holds_alternative<geo::Cylinder>(b.surface(side))) continue;  // a cone's seam runs to its apex
+    ASSERT_TRUE(seam.valid());
+    ASSERT_TRUE(euler::kemr(b, seam));
+    auto v = loop_violations(b, {side}, kTol);
+    EXPECT_TRUE(has(v, "loop_without_seam")) << list(v);
+    EXPECT_TRUE(has(region_violations(b, whole_body(b), kTol, kTol.precision), "loop_without_seam"));
+  }
+}
+
 TEST(RegionValidity, AWrongSenseIsFoundOnPlanesAndCylinders) {
   for (Body b : {build::box(1, 1, 1), build::cylinder(1, 2)}) {
     for (FaceH f : b.faces()) {
