@@ -33,8 +33,9 @@ FaceInfo measure_face(const Body& b, FaceH f, const geo::Tolerances& tol, double
   fi.measured = true;
   fi.area = m->area;
   fi.bbox_diagonal = m->bounds.diagonal();
+  fi.length = sliver_length(b, f, fi.bbox_diagonal, [&](EdgeH e) { return edge_length(b, e); });
   fi.small = m->area < tol.length * tol.length;
-  fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < tol.length;
+  fi.sliver = !fi.small && fi.length > 0 && m->area / fi.length < tol.length;
   return fi;
 }
 
@@ -97,13 +98,16 @@ FaceInfo DetectContext::measure(FaceH f) const {
     if (!m) break;
     const double e = step + chordal;
     const double area_lo = m->area - 4 * perimeter * e;
-    const double diagonal_hi = m->bounds.diagonal() + 4 * e;
+    // A band's length (sliver_length) comes from its edges' lengths, not the sampling.
+    auto length_of = [&](double diagonal) { return sliver_length(b, f, diagonal, [&](EdgeH x) { return edge_length(x); }); };
+    const double diagonal_hi = length_of(m->bounds.diagonal() + 4 * e);
     const double t = tol.length;
     if (std::isfinite(area_lo) && area_lo >= t * t && area_lo >= t * diagonal_hi) {
       FaceInfo fi;
       fi.measured = true;
       fi.area = m->area;
       fi.bbox_diagonal = m->bounds.diagonal();
+      fi.length = length_of(fi.bbox_diagonal);
       return fi;
     }
     // Small or a sliver whatever the step (the measure's upper bound fails): straight to
@@ -111,7 +115,7 @@ FaceInfo DetectContext::measure(FaceH f) const {
     // step can lose nearly all of a strip's area (that strip of Bottom.brep measured
     // 3e-12 mm² at its coarse step).
     const double area_hi = m->area + 4 * perimeter * e;
-    const double diagonal_lo = std::max(0.0, m->bounds.diagonal() - 4 * e);
+    const double diagonal_lo = length_of(std::max(0.0, m->bounds.diagonal() - 4 * e));
     if (!(area_hi >= t * t && area_hi >= t * diagonal_lo)) break;
   }
   return measure_face(b, f, tol, chordal);
@@ -364,8 +368,9 @@ Detection detect_types(const Body& b, const geo::Tolerances& tol, const std::vec
       fi.measured = true;
       fi.area = m->area;
       fi.bbox_diagonal = m->bounds.diagonal();
+      fi.length = detail::sliver_length(b, f, fi.bbox_diagonal, [&](EdgeH e) { return edge_length(b, e); });
       fi.small = m->area < t * t;
-      fi.sliver = !fi.small && fi.bbox_diagonal > 0 && m->area / fi.bbox_diagonal < t;
+      fi.sliver = !fi.small && fi.length > 0 && m->area / fi.length < t;
     }
     c.know(f, fi);
   }

@@ -3,6 +3,8 @@
 // use, and shared by the detectors.
 #pragma once
 
+#include <algorithm>
+
 #include "geometry/area.h"
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
@@ -20,9 +22,32 @@ struct FaceInfo {
   bool measured = false;
   double area = 0.0;
   double bbox_diagonal = 0.0;
+  double length = 0.0;  // what the width is area over: sliver_length
   bool small = false;   // area < tol²
-  bool sliver = false;  // area / bbox diagonal < tol, and not small
+  bool sliver = false;  // area / length < tol, and not small
 };
+
+// The length of a face that its width is its area over. The paper (4.4) takes the box's
+// diagonal; for a band round a periodic surface — one loop that crosses itself along its
+// seam, [c1, s, c2, s⁻¹], as a scanned chamfer or fillet of a circular edge makes — that
+// is the band's diameter, and the width came out π times too wide (a 0.03 chamfer of a
+// 10-mm cylinder's edge, 0.042 wide, measured 0.094). Such a band's length is half its
+// boundary without the seam: its mean circumference. `edge_length` measures an edge.
+template <class EdgeLength>
+double sliver_length(const Body& b, FaceH f, double diagonal, EdgeLength edge_length) {
+  LoopH l = b.outer_loop(f);
+  if (!l.valid() || b.next_in_face(l).valid() || b.is_lone(l)) return diagonal;
+  std::vector<EdgeH> es;
+  b.for_each_halfedge(l, [&](HalfedgeH h) { es.push_back(edge_of(h)); });
+  double rim = 0.0;
+  bool seam = false;
+  for (std::size_t i = 0; i < es.size(); ++i) {
+    const bool twice = std::count(es.begin(), es.end(), es[i]) > 1;
+    seam = seam || twice;
+    if (!twice) rim += edge_length(es[i]);
+  }
+  return seam ? std::max(diagonal, 0.5 * rim) : diagonal;
+}
 
 // A face measured with its boundary sampled at `chordal` (no coarse first pass): the
 // reference DetectContext::face() decides as.

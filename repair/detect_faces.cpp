@@ -57,7 +57,7 @@ void detect_small_and_sliver(DetectContext& c, std::vector<Problem>& out) {
       Problem p;
       p.type = ProblemType::sliver_face;
       p.elements = {f};
-      p.measure = fi.area / fi.bbox_diagonal;
+      p.measure = fi.area / fi.length;
       p.measure_kind = Measure::width;
       out.push_back(std::move(p));
       continue;

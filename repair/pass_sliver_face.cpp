@@ -27,12 +27,14 @@
 #include "kernel/euler.h"
 #include "kernel/transaction.h"
 #include "repair/beautify_detail.h"
+#include "repair/detect_detail.h"
 #include "repair/face_collapse.h"
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <map>
+#include <optional>
 
 namespace kintsugi::detail {
 
@@ -176,14 +178,59 @@ std::string branched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop
   return place(c, vs);
 }
 
+// A ring sliver: a narrow band round a periodic surface — a scanned chamfer or fillet of a
+// circular edge, a cone's or torus's band between a cylinder's side and a cap — bounded
+// by two closed edges and joined across by its seam: its one loop is [c1, s, c2, s⁻¹].
+// It has no two ends to collapse (the general collapse stops at "meets itself along"
+// its seam). It becomes the closed edge where the faces across c1 and c2 meet: c1 is
+// killed (kef), the band joining the face across it; the seam's vertex on c1, now on
+// that face's seam and the band's only, is joined away (jekv), so the seams make one;
+// the vertex on c2 goes to where the two faces meet (place_vertices), and c2 and the
+// seam get the curves there. Applies when both closed edges are single edges (the seams
+// of the band and of the face across c1 meet c1 at one vertex, as OpenCASCADE's
+// chamfers and fillets of a circle make them); nullopt when f is not such a band.
+std::optional<std::string> ring_sliver(RepairContext& c, FaceH f) {
+  Body& b = c.b;
+  std::vector<LoopH> loops = b.loops_of(f);
+  if (loops.size() != 1 || b.is_lone(loops[0])) return std::nullopt;
+  std::vector<HalfedgeH> hs = b.loop_halfedges(loops[0]);
+  if (hs.size() != 4) return std::nullopt;
+  // Rotate so that hs[1] and hs[3] are the seam's two sides.
+  std::size_t k = 0;
+  while (k < 4 && edge_of(hs[(k + 1) % 4]) != edge_of(hs[(k + 3) % 4])) ++k;
+  if (k == 4) return std::nullopt;
+  std::rotate(hs.begin(), hs.begin() + std::ptrdiff_t(k), hs.end());
+  HalfedgeH c1 = hs[0], c2 = hs[2];
+  if (edge_of(c1) == edge_of(c2) || b.origin(c1) != b.target(c1) || b.origin(c2) != b.target(c2)) return std::nullopt;
+  // The band joins the face across c1 along it, which kef cannot do where c1 is that
+  // face's whole loop (a plate's hole round a boss): then across c2.
+  if (b.loop_halfedges(b.loop(twin(c1))).size() == 1) std::swap(c1, c2);
+  const FaceH a = b.face(twin(c1)), p = b.face(twin(c2));
+  if (!a.valid() || !p.valid() || a == f || p == f || a == p) return std::nullopt;
+  const VertexH v1 = b.origin(c1), v2 = b.origin(c2);
+  // The band joins the face across c1: kef keeps h's face, a.
+  if (auto r = euler::kef(b, twin(c1)); !r) return "kef refused at " + edge_of(c1).str() + ": " + r.error().message;
+  // v1 now lies on a's seam and the band's only: one seam from a's far edge to v2.
+  std::vector<HalfedgeH> outs = b.outgoing(v1);
+  if (outs.size() != 2 || edge_of(outs[0]) == edge_of(outs[1]))
+    return v1.str() + " is left on " + std::to_string(outs.size()) + " edges, not on two seams";
+  const HalfedgeH keep = edge_length(b, edge_of(outs[0])) >= edge_length(b, edge_of(outs[1])) ? outs[0] : outs[1];
+  if (auto r = euler::jekv(b, twin(keep)); !r) return "jekv refused at " + v1.str() + ": " + r.error().message;
+  c.touched.faces.insert(a);
+  c.touched.faces.insert(p);
+  c.note = "a ring: " + f.str() + " became the closed edge where " + a.str() + " and " + p.str() + " meet";
+  return place_vertices(b, {{v2, b.point(v2)}}, c.tol, 2 * c.tol.length, c.touched);
+}
+
 std::string repair_sliver_face(RepairContext& c) {
   Body& b = c.b;
   FaceH f = c.problem.first<FaceH>();
   if (!f.valid()) return "no face named";
+  if (auto why = ring_sliver(c, f)) return *why;
   if (auto why = collapsible(b, f); !why.empty()) return why;
   auto m = face_area_and_bounds(b, f, 1e-3 * c.tol.length);
-  if (!m || !(m->bounds.diagonal() > 0) || !(m->area / m->bounds.diagonal() < c.tol.length))
-    return f.str() + " is no longer a sliver";
+  const double length = m ? sliver_length(b, f, m->bounds.diagonal(), [&](EdgeH e) { return edge_length(b, e); }) : 0.0;
+  if (!m || !(length > 0) || !(m->area / length < c.tol.length)) return f.str() + " is no longer a sliver";
   if (auto why = drop_bare_vertices(b, f); !why.empty()) return why;
   std::vector<VertexH> loop = b.loop_vertices(b.outer_loop(f));
   if (loop.size() < 2) return f.str() + " has fewer than two vertices on other edges";
