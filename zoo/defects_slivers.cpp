@@ -5,6 +5,7 @@
 #include "zoo/defects_slivers.h"
 
 #include "geometry/curve.h"
+#include "geometry/surface.h"
 
 #include <cmath>
 
@@ -255,6 +256,68 @@ KnownDefect corner_network(Body& b, VertexH v, double arm, double width) {
     d.size = std::max(d.size, polygon_area(loop_points(b, b.outer_loop(f))));
   }
   return d;
+}
+
+
+KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side) {
+  // c: a circle, closed at one vertex v, between a cylinder's side A and a plane P square
+  // to its axis (a cap, or a plate round a boss's foot); A's seam leaves v.
+  HalfedgeH hc = halfedge_of(c, 0);
+  if (b.origin(hc) != b.target(hc) || !std::holds_alternative<geo::Circle>(b.curve(c)))
+    throw Unsuitable(c.str() + " is not a closed circle");
+  if (std::holds_alternative<geo::Cylinder>(b.surface(b.face(twin(hc))))) hc = twin(hc);
+  const FaceH A = b.face(hc), P = b.face(twin(hc));
+  const auto* cyl = std::get_if<geo::Cylinder>(&b.surface(A));
+  const auto* plane = P.valid() ? std::get_if<geo::Plane>(&b.surface(P)) : nullptr;
+  if (!cyl || !plane) throw Unsuitable(c.str() + " is not between a cylinder and a plane");
+  const Vec3 axis = cyl->frame.z.normalized();
+  if (std::abs(std::abs(plane->frame.z.normalized().dot(axis)) - 1) > 1e-9)
+    throw Unsuitable(c.str() + ": the plane is not square to the cylinder's axis");
+  const VertexH v = b.origin(hc);
+  const HalfedgeH seam = b.next(hc);  // v → the seam's other end, along A
+  if (b.origin(seam) != v || !std::holds_alternative<geo::Line>(b.curve(edge_of(seam))) ||
+      b.face(twin(seam)) != A)
+    throw Unsuitable(c.str() + ": no seam of " + A.str() + " leaves " + v.str());
+  const Vec3 pv = b.point(v), along = (b.point(b.target(seam)) - pv).normalized();
+  if ((b.point(b.target(seam)) - pv).norm() < 4 * into_side) throw Unsuitable(A.str() + " is too short");
+  const geo::Circle old = std::get<geo::Circle>(b.curve(c));
+  // The direction hc runs round, and into P's interior from the circle: a cap lies inside
+  // its outer circle, a plate outside the hole round a boss.
+  const Vec3 about = hc == halfedge_of(c, 0) ? old.frame.z : Vec3(-old.frame.z);
+  const Vec3 centre = old.frame.origin;
+  const Vec3 radial = (pv - centre).normalized();
+  const double inward = b.is_outer(b.loop(twin(hc))) ? -1.0 : 1.0;
+  if (inward < 0 && old.radius < 4 * into_cap) throw Unsuitable(P.str() + " is too small");
+
+  const SemvResult split = must(euler::semv(b, seam, pv + into_side * along), "semv (ring chamfer)");
+  const VertexH v2 = split.vertex;  // on the seam, into_side from v
+  // A's loop is [hc, seam, next, ..., twin(next), twin(seam)]: the new circle through v2
+  // cuts [twin(seam), hc, seam] off as the band.
+  const MefResult m = must(euler::mef(b, Corner::before(twin(seam)), Corner::before(split.next)), "mef (ring chamfer)");
+  b.set_point(v, pv + inward * into_cap * radial);
+  set_circle(b, hc, centre, about);
+  set_circle(b, m.a, centre + into_side * along, about);
+  set_line(b, edge_of(seam));
+  set_line(b, edge_of(split.next));
+  // The band: a cone through its two circles, its seam where A's is.
+  geo::Cone cone;
+  cone.frame.origin = centre + into_side * along;
+  cone.frame.z = -along;
+  cone.frame.x = radial;
+  cone.radius = cyl->radius;
+  cone.half_angle = std::atan2(inward * into_cap, into_side);
+  const FaceH band = m.face;
+  // Outward between A's and P's outward normals.
+  const Vec3 mid = 0.5 * (b.point(v) + b.point(v2));
+  auto outward = [&](FaceH f) {
+    const geo::Surface& s = b.surface(f);
+    return Vec3(geo::normal(s, geo::parameters(s, mid)) * (b.same_sense(f) ? 1.0 : -1.0));
+  };
+  const Vec3 want = outward(A) + outward(P);
+  const geo::Surface band_surface = cone;
+  b.set_surface(band, band_surface, geo::normal(band_surface, geo::parameters(band_surface, mid)).dot(want) > 0);
+  const double width = std::hypot(into_cap, into_side);
+  return {ProblemType::sliver_face, {band.str()}, width};
 }
 
 }  // namespace make

@@ -22,6 +22,12 @@ KnownDefect tapered_chamfer(Body& b, EdgeH e, FaceH A, double wa0, double wb0, d
 // to it (its ends are circular arcs). size = the fillet's width (arc length).
 KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius);
 
+// sliver_face round a circle: closed circle c between a cylinder's side and a plane square
+// to its axis (a cap, or a plate round a boss's foot) chamfered into a cone band,
+// `into_cap` into the plane and `into_side` along the cylinder (a scanned chamfer of a
+// turned part's edge). size = the band's width.
+KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side);
+
 // small_face_chain: a notch along convex edge e starting `s0` from its start (in A's
 // direction): an end wall, lengths.size() faces along the edge (the i-th cross section
 // cuts wa[i] into A; the first wb0 into B), an end wall. The chain has lengths.size() + 2

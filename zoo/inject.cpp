@@ -15,6 +15,7 @@
 #include "zoo/paper_build.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <set>
@@ -176,6 +177,20 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
       break;
     case ProblemType::sliver_face:
       for (Maker& m : sliver_makers(b, edges, tol, rng)) out.push_back({std::move(m.make), m.where});
+      // A chamfer round a circle (a cylinder's end, a boss's foot): later sites, sized
+      // without draws from rng (see Site::later), by a hash of the edge and the tolerance.
+      for (EdgeH e : edges) {
+        if (!std::holds_alternative<geo::Circle>(b.curve(e))) continue;
+        std::uint64_t h = e.idx() * 0x9E3779B97F4A7C15ull ^ std::bit_cast<std::uint64_t>(tol);
+        auto fraction = [&h] {
+          h += 0x9E3779B97F4A7C15ull;
+          std::uint64_t z = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+          z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+          return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+        };
+        const double into_cap = tol * (0.1 + 0.3 * fraction()), into_side = tol * (0.1 + 0.3 * fraction());
+        out.push_back({[=](Body& x) { return make::ring_chamfer(x, e, into_cap, into_side); }, e.str(), {}, true});
+      }
       break;
     case ProblemType::same_geometry_faces:
       for (FaceH f : faces) {
