@@ -23,6 +23,7 @@
 // May leave (Table 1, column 6): short edges and chains of them, adjacent faces with the
 // same geometry.
 #include "geometry/meet_point.h"
+#include "geometry/surface.h"
 #include "invariants/element_geometry.h"
 #include "kernel/euler.h"
 #include "kernel/transaction.h"
@@ -178,6 +179,41 @@ std::string branched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop
   return place(c, vs);
 }
 
+// Where a surface of revolution meets a plane square to its axis, the point of that circle
+// in the axial half-plane through p: the ring's vertex on c2 goes there, so that it stays
+// on the seam's ruling. The meeting point's solve, given p 0.05 off both, slid it 0.003 rad
+// round the circle, and the seam from the side's far end became a chord 3e-5 off the
+// cylinder (the scan-parts score, shaft). p itself where the surfaces are not of that
+// kind, or the ray does not meet the surface.
+geo::Vec3 on_both_at_its_angle(const geo::Surface& side, const geo::Surface& cap, const geo::Vec3& p,
+                               const geo::Tolerances& tol) {
+  const auto* plane = std::get_if<geo::Plane>(&cap);
+  std::optional<geo::Frame> axis;
+  if (const auto* s = std::get_if<geo::Cylinder>(&side)) axis = s->frame;
+  if (const auto* s = std::get_if<geo::Cone>(&side)) axis = s->frame;
+  if (const auto* s = std::get_if<geo::Torus>(&side)) axis = s->frame;
+  if (!plane || !axis) return p;
+  const geo::Vec3 n = plane->frame.z.normalized(), z = axis->z.normalized();
+  if (std::abs(std::abs(n.dot(z)) - 1) > 1e-9) return p;
+  // The axis meets the plane at o; the ray from o through p's projection.
+  const geo::Vec3 o = axis->origin + (plane->frame.origin - axis->origin).dot(n) / z.dot(n) * z;
+  geo::Vec3 d = p - o;
+  d -= d.dot(n) * n;
+  double t = d.norm();
+  if (!(t > 0)) return p;
+  d /= t;
+  // Secant on the distance to the side along the ray.
+  auto f = [&](double x) { return geo::signed_distance(side, o + x * d); };
+  double t0 = t, f0 = f(t0), t1 = t + 1e-3 * tol.length, f1 = f(t1);
+  for (int i = 0; i < 50 && std::abs(f1) > 0.01 * tol.precision; ++i) {
+    if (!(std::abs(f1 - f0) > 0)) break;
+    const double t2 = t1 - f1 * (t1 - t0) / (f1 - f0);
+    t0 = t1, f0 = f1, t1 = t2, f1 = f(t1);
+  }
+  if (!(std::abs(f1) <= tol.precision) || !(std::abs(t1 - t) <= 2 * tol.length)) return p;
+  return o + t1 * d;
+}
+
 // A ring sliver: a narrow band round a periodic surface — a scanned chamfer or fillet of a
 // circular edge, a cone's or torus's band between a cylinder's side and a cap — bounded
 // by two closed edges and joined across by its seam: its one loop is [c1, s, c2, s⁻¹].
@@ -219,7 +255,8 @@ std::optional<std::string> ring_sliver(RepairContext& c, FaceH f) {
   c.touched.faces.insert(a);
   c.touched.faces.insert(p);
   c.note = "a ring: " + f.str() + " became the closed edge where " + a.str() + " and " + p.str() + " meet";
-  return place_vertices(b, {{v2, b.point(v2)}}, c.tol, 2 * c.tol.length, c.touched);
+  return place_vertices(b, {{v2, on_both_at_its_angle(b.surface(a), b.surface(p), b.point(v2), c.tol)}}, c.tol,
+                        2 * c.tol.length, c.touched);
 }
 
 std::string repair_sliver_face(RepairContext& c) {
