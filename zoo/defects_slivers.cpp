@@ -259,7 +259,10 @@ KnownDefect corner_network(Body& b, VertexH v, double arm, double width) {
 }
 
 
-KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side) {
+namespace {
+// A band round circle c: a cone (chamfer, into_cap and into_side) or a quarter torus
+// (fillet of radius into_cap = into_side, tangent to both faces).
+KnownDefect ring_band(Body& b, EdgeH c, double into_cap, double into_side, bool round) {
   // c: a circle, closed at one vertex v, between a cylinder's side A and a plane P square
   // to its axis (a cap, or a plate round a boss's foot); A's seam leaves v.
   HalfedgeH hc = halfedge_of(c, 0);
@@ -297,15 +300,32 @@ KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side) {
   b.set_point(v, pv + inward * into_cap * radial);
   set_circle(b, hc, centre, about);
   set_circle(b, m.a, centre + into_side * along, about);
-  set_line(b, edge_of(seam));
   set_line(b, edge_of(split.next));
-  // The band: a cone through its two circles, its seam where A's is.
-  geo::Cone cone;
-  cone.frame.origin = centre + into_side * along;
-  cone.frame.z = -along;
-  cone.frame.x = radial;
-  cone.radius = cyl->radius;
-  cone.half_angle = std::atan2(inward * into_cap, into_side);
+  // The band: a cone through its two circles, or a torus whose tube touches the side
+  // along the new circle and the plane along the moved one; its seam where A's is.
+  geo::Surface band_surface;
+  if (round) {
+    geo::Torus torus;
+    torus.frame.origin = centre + into_side * along;
+    torus.frame.z = -along;
+    torus.frame.x = radial;
+    torus.major_radius = cyl->radius + inward * into_cap;
+    torus.minor_radius = into_cap;
+    band_surface = torus;
+    // The seam along the tube: a quarter circle about the tube's centre.
+    const Vec3 tube = torus.frame.origin + torus.major_radius * radial;
+    const Vec3 n = (b.point(v) - tube).cross(b.point(v2) - tube);
+    set_circle(b, seam, tube, n);
+  } else {
+    geo::Cone cone;
+    cone.frame.origin = centre + into_side * along;
+    cone.frame.z = -along;
+    cone.frame.x = radial;
+    cone.radius = cyl->radius;
+    cone.half_angle = std::atan2(inward * into_cap, into_side);
+    band_surface = cone;
+    set_line(b, edge_of(seam));
+  }
   const FaceH band = m.face;
   // Outward between A's and P's outward normals.
   const Vec3 mid = 0.5 * (b.point(v) + b.point(v2));
@@ -314,11 +334,17 @@ KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side) {
     return Vec3(geo::normal(s, geo::parameters(s, mid)) * (b.same_sense(f) ? 1.0 : -1.0));
   };
   const Vec3 want = outward(A) + outward(P);
-  const geo::Surface band_surface = cone;
   b.set_surface(band, band_surface, geo::normal(band_surface, geo::parameters(band_surface, mid)).dot(want) > 0);
-  const double width = std::hypot(into_cap, into_side);
+  const double width = round ? 0.5 * M_PI * into_cap : std::hypot(into_cap, into_side);
   return {ProblemType::sliver_face, {band.str()}, width};
 }
+}  // namespace
+
+KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side) {
+  return ring_band(b, c, into_cap, into_side, false);
+}
+
+KnownDefect ring_fillet(Body& b, EdgeH c, double radius) { return ring_band(b, c, radius, radius, true); }
 
 }  // namespace make
 }  // namespace kintsugi::zoo

@@ -27,6 +27,9 @@ KnownDefect fillet(Body& b, EdgeH e, FaceH A, double radius);
 // `into_cap` into the plane and `into_side` along the cylinder (a scanned chamfer of a
 // turned part's edge). size = the band's width.
 KnownDefect ring_chamfer(Body& b, EdgeH c, double into_cap, double into_side);
+// The same rounded: a quarter torus of `radius` tangent to the side and the plane (a
+// scanned fillet). size = its width (arc length).
+KnownDefect ring_fillet(Body& b, EdgeH c, double radius);
 
 // small_face_chain: a notch along convex edge e starting `s0` from its start (in A's
 // direction): an end wall, lengths.size() faces along the edge (the i-th cross section

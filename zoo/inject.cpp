@@ -189,7 +189,10 @@ std::vector<Site> sites(const Body& b, ProblemType t, double tol, Rng& rng, cons
           return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
         };
         const double into_cap = tol * (0.1 + 0.3 * fraction()), into_side = tol * (0.1 + 0.3 * fraction());
-        out.push_back({[=](Body& x) { return make::ring_chamfer(x, e, into_cap, into_side); }, e.str(), {}, true});
+        if (fraction() < 0.5)
+          out.push_back({[=](Body& x) { return make::ring_chamfer(x, e, into_cap, into_side); }, e.str(), {}, true});
+        else  // a fillet whose width (a quarter circle) is as wide as a chamfer's
+          out.push_back({[=](Body& x) { return make::ring_fillet(x, e, 0.6 * into_cap); }, e.str(), {}, true});
       }
       break;
     case ProblemType::same_geometry_faces:
