@@ -428,6 +428,14 @@ KnownDefect split_along_ruling(Body& b, FaceH f, double min_gap) {
       throw Unsuitable(f.str() + " is not bounded by two circles and two rulings");
   }
   if (ends.size() != 2) throw Unsuitable(f.str() + " is not bounded by two circles and two rulings");
+  // A scan fits a face twice only where it is wide enough to be fitted (as a planar face
+  // split in two must be 10 tolerances across): a narrow band round a circle (another
+  // defect's ring chamfer) split along a ruling made two half-ring slivers, a defect of
+  // its own (Table 1 audit, seed 2042).
+  {
+    const Vec3 a = b.point(b.origin(ends[0])), c = b.point(b.origin(ends[1]));
+    if ((a - c).norm() < 5 * min_gap) throw Unsuitable(f.str() + " is too narrow to have been fitted twice");
+  }
   // The arc of end h (in its edge's direction), and whether x is inside it at least
   // min_gap from its ends.
   auto arc = [&](HalfedgeH h) {
