@@ -50,14 +50,26 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
       if (std::find(out.left.begin(), out.left.end(), p.type) == out.left.end()) out.left.push_back(p.type);
     }
   const std::size_t first = report.problems.size();
+  const Body before_pass = b;  // for telling a flip (below); a trial's model is small
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
   out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
   if (std::any_of(out.created.begin(), out.created.end(),
                   [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {
     const Detection tighter = detect(b, geo::Tolerances::for_model(kFlipMargin * built->tolerance, size_of(b)));
+    const Detection looser =
+        detect(before_pass, geo::Tolerances::for_model(kFlipReach * built->tolerance, size_of(before_pass)));
+    // A small face and a sliver are one face problem told apart by area against t²: a
+    // refit that grows a small face's area past it makes it a sliver, no new problem.
+    auto as_other_face_problem = [](Problem p) {
+      if (p.type == ProblemType::small_face) p.type = ProblemType::sliver_face;
+      else if (p.type == ProblemType::sliver_face) p.type = ProblemType::small_face;
+      return p;
+    };
     for (const Problem& p : out.created)
-      if (verdict(p.type, r.pass) == Verdict::counterexample && !existed_before(p, tighter.problems))
+      if (verdict(p.type, r.pass) == Verdict::counterexample &&
+          (!existed_before(p, tighter.problems) || existed_before(p, looser.problems) ||
+           existed_before(as_other_face_problem(p), before.problems)))
         out.near_threshold.push_back(p);
   }
   return out;

@@ -28,16 +28,20 @@ struct TrialResult {
   bool precondition = true;
   std::vector<ProblemType> left;    // the earlier types still there when the pass ran
   std::vector<Problem> created;     // present after the pass, not before it
-  // Those of `created` on or above the diagonal that are gone when the model after the
-  // pass is judged at 0.9 of the tolerance: a repair's refit moved a measure from above
-  // the tolerance to just below it (a threshold flip, docs/table1-audit.md), not a pass
-  // that broke the order, which makes its problem whatever the tolerance.
+  // Those of `created` on or above the diagonal that a repair's geometry moved across the
+  // tolerance (a threshold flip, docs/table1-audit.md), not a pass that broke the order,
+  // which makes its problem where none was near: gone when the model after the pass is
+  // judged at kFlipMargin of the tolerance, or there already, at the same place, when
+  // the model before the pass is judged at kFlipReach of it (repairs move surfaces up to
+  // the tolerance and vertices up to twice it); or a sliver that was a small face before
+  // the pass (or the reverse): its area crossed t².
   std::vector<Problem> near_threshold;
   std::string description;          // the injected defects
 };
 // The tolerance, as a fraction of the trial's, at which a created problem must still be
 // found to count as a counterexample rather than a threshold flip.
 inline constexpr double kFlipMargin = 0.9;
+inline constexpr double kFlipReach = 2.0;
 TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
 
 // Whether `after` existed before the pass, as the same problem: the same kind of problem
