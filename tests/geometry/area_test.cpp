@@ -231,6 +231,14 @@ RC_GTEST_PROP(AreaProperty, AreaAndBoundsOnlyAgreeWithTheFullMeasure, ()) {
   double v0 = gen_real(-1.0, 0.5), dv = gen_real(0.1, 1.0);
   // On a cone the whole patch stays on one side of the apex, skew included.
   if (const auto* k = std::get_if<Cone>(&s)) v0 = apex_parameter(*k) + std::max(0.0, -skew) * dv + gen_real(0.2, 1.0);
+  // On a sphere it stays off the poles, where the parameters are singular: a corner shrunk
+  // onto the south pole (v0 + skew·dv = -π/2) made a quadrilateral in (u, v) that is no
+  // longer the region on the sphere, and the two measures' bounds differed by 0.0035 of
+  // its diagonal (random seed 3189373801376000767, session 23's CI run).
+  if (std::holds_alternative<Sphere>(s)) {
+    const double lowest = v0 + std::min(0.0, skew * dv), highest = v0 + dv + std::max(0.0, skew * dv);
+    v0 += std::max(0.0, -kPi / 2 + 0.05 - lowest) - std::max(0.0, highest - (kPi / 2 - 0.05));
+  }
   const std::vector<std::vector<Vec3>> loops{
       loop(s, {Vec2(u0, v0), Vec2(u0 + du, v0 + skew * dv), Vec2(u0 + du, v0 + dv + skew * dv), Vec2(u0, v0 + dv)})};
   AreaOptions fast;
