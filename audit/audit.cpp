@@ -164,6 +164,20 @@ Recipe shrink(Recipe r, const std::function<bool(const Recipe&)>& still) {
   return r;
 }
 
+namespace {
+// Whether a trial created problems of a type, and whether all of them were threshold flips.
+enum class Created { none, flips_only, some_not_flips };
+Created created_as(const TrialResult& t, ProblemType type) {
+  Created k = Created::none;
+  for (const Problem& q : t.created)
+    if (q.type == type) {
+      if (!existed_before(q, t.near_threshold)) return Created::some_not_flips;
+      k = Created::flips_only;
+    }
+  return k;
+}
+}  // namespace
+
 Result run(const Options& o) {
   const auto start = std::chrono::steady_clock::now();
   Result res;
@@ -187,20 +201,10 @@ Result run(const Options& o) {
       }
       res.trials[idx(pass->type)]++;
       std::set<ProblemType> seen;
-      // A created type is a flip in this trial when every problem of it is.
-      auto flip_only = [&t](ProblemType type) {
-        bool any = false;
-        for (const Problem& q : t.created)
-          if (q.type == type) {
-            if (!existed_before(q, t.near_threshold)) return false;
-            any = true;
-          }
-        return any;
-      };
       for (const Problem& p : t.created) {
         if (!seen.insert(p.type).second) continue;
         res.cells[idx(p.type)][idx(pass->type)]++;
-        const bool flip = flip_only(p.type);
+        const bool flip = created_as(t, p.type) == Created::flips_only;
         if (flip) res.flips[idx(p.type)][idx(pass->type)]++;
         // One finding per cell; a cell with flips only keeps looking for a counterexample.
         bool& done = recorded[idx(p.type)][idx(pass->type)];
@@ -214,10 +218,8 @@ Result run(const Options& o) {
         auto creates = [created, flip, v, &o](const Recipe& c) {
           const TrialResult t = run_trial(c, o.beautify);
           if (!t.precondition) return false;
-          bool any = false, all_flips = true;
-          for (const Problem& q : t.created)
-            if (q.type == created) any = true, all_flips = all_flips && existed_before(q, t.near_threshold);
-          return any && (v != Verdict::counterexample || all_flips == flip);
+          const Created k = created_as(t, created);
+          return k != Created::none && (v != Verdict::counterexample || (k == Created::flips_only) == flip);
         };
         Finding f{created, r, p};
         if (o.shrink) {
