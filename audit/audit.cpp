@@ -57,8 +57,11 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   if (std::any_of(out.created.begin(), out.created.end(),
                   [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {
     const Detection tighter = detect(b, geo::Tolerances::for_model(kFlipMargin * built->tolerance, size_of(b)));
-    const Detection looser =
-        detect(before_pass, geo::Tolerances::for_model(kFlipReach * built->tolerance, size_of(before_pass)));
+    std::vector<Problem> looser;
+    for (double k : kFlipReach) {
+      const Detection d = detect(before_pass, geo::Tolerances::for_model(k * built->tolerance, size_of(before_pass)));
+      looser.insert(looser.end(), d.problems.begin(), d.problems.end());
+    }
     // A small face and a sliver are one face problem told apart by area against t²: a
     // refit that grows a small face's area past it makes it a sliver, no new problem.
     auto as_other_face_problem = [](Problem p) {
@@ -68,7 +71,7 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
     };
     for (const Problem& p : out.created)
       if (verdict(p.type, r.pass) == Verdict::counterexample &&
-          (!existed_before(p, tighter.problems) || existed_before(p, looser.problems) ||
+          (!existed_before(p, tighter.problems) || existed_before(p, looser) ||
            existed_before(as_other_face_problem(p), before.problems)))
         out.near_threshold.push_back(p);
   }

@@ -45,7 +45,7 @@ options_of() {  # one per line
     detect) printf '%s\n' "--tol T" "--json" ;;
     beautify) printf '%s\n' "--tol T" "-o OUT" "--report R.json" ;;
     demo) ;;
-    audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" "--trace" ;;
+    audit) printf '%s\n' "--trials N" "--seed S" "--pass P" "--json" "--save DIR" "--no-shrink" "--trace" "--replay F" ;;
     convert) printf '%s\n' "IN OUT" ;;
     measure) printf '%s\n' "--json" "--tol T" ;;
     view) printf '%s\n' "--tol T" "--chordal C" "-o PAGE.html" "--png" ;;
@@ -268,6 +268,22 @@ expect 0 "audit one trial" -- "$K" audit --trials 1 --pass short_edge --no-shrin
 expect 0 "audit --save into a missing directory" -- "$K" audit --trials 1 --pass short_edge --save "$dir/audit/found"
 [ -d "$dir/audit/found" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: audit --save made no directory"; }
 : >"$dir/plainfile"
+# audit --replay: one saved finding's trial told in full (a witness of pass 4 creating a
+# chain of small faces, tests/data/table1)
+cat > "$dir/finding.json" <<'JSON'
+{"base": "prism5", "created": "small_face_chain", "kind": "witness", "pass": "pinched_face",
+ "injections": [{"seed": 13938918205036723286, "type": "pinched_face"},
+                {"seed": 10718693687128901043, "type": "small_face_chain"}],
+ "rotation": [1.0, 0.0, 0.0, 0.0], "scale": 1.0, "tolerance": 0.027599754756144654, "translation": [0.0, 0.0, 0.0]}
+JSON
+expect 0 "audit --replay of a witness" -- "$K" audit --replay "$dir/finding.json"
+contains "pass pinched_face" "audit --replay names the pass"
+contains "small_face_chain f" "audit --replay lists the created chain with its faces"
+echo '{"base": "prism5"' > "$dir/torn.json"
+expect 2 "audit --replay of a torn file" -- "$K" audit --replay "$dir/torn.json"
+contains "not a finding's recipe" "audit --replay says the file is not a recipe"
+expect 2 "audit --replay of a missing file" -- "$K" audit --replay "$dir/none.json"
+contains "cannot read" "audit --replay names the file it cannot read"
 expect 2 "audit --save under a plain file" -- "$K" audit --trials 1 --pass short_edge --save "$dir/plainfile/found"
 contains "cannot create the directory" "audit --save names the directory it cannot make"
 

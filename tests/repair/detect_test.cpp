@@ -335,6 +335,26 @@ TEST(Detect, ThinBoxSidesAreSlivers) {
   EXPECT_EQ(d.count(ProblemType::small_face), 0) << describe(d);
 }
 
+// A spike is two sides running nearly side by side, joined through a short stretch (paper
+// 4.2); a designed acute corner whose tip a short edge cuts is not one. A prism on a
+// triangle with its tip cut by an edge of 0.3 t: at 30°, 45° and 60° the sides, t from the
+// short edge, are 0.82 t, 1.07 t and 1.3 t apart, and before sides had to be near parallel
+// the 30° corner read as a spike on the top and the bottom (the Table 1 audit found a
+// pyramid's 60° corner so, after a sliver's removal left a short edge there). At 8° the
+// sides stay within t for 7 t: a spike on both.
+TEST(Detect, AnAcuteCornerCutByAShortEdgeIsASpikeOnlyWhenItsSidesRunSideBySide) {
+  const double t = 0.01, pi = std::acos(-1.0);
+  for (double degrees : {8.0, 30.0, 45.0, 60.0}) {
+    const double half = degrees * pi / 360, d = 0.15 * t / std::sin(half);
+    const geo::Vec2 dir_up(std::cos(half), std::sin(half)), dir_down(std::cos(half), -std::sin(half));
+    Body b = build::prism({d * dir_down, dir_down, dir_up, d * dir_up}, 0.5);
+    Detection found = detect(b, tol_for(b, t));
+    EXPECT_EQ(found.count(ProblemType::pinched_face), degrees < 20 ? 2 : 0) << degrees << "°\n" << describe(found);
+    for (const Problem& p : found.problems)
+      if (p.type == ProblemType::pinched_face) EXPECT_EQ(p.subcase.location, PinchLocation::spiking) << describe(found);
+  }
+}
+
 TEST(Detect, ShortEdgeChainAndMergeableVertex) {
   const double t = 0.01;
   Body b = pyramid_with_apex_edge(0.8 * t);
