@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -266,6 +268,49 @@ Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_S
     pieces.push_back(p);
   }
   return joined(pieces);
+}
+
+namespace {
+struct PcurveMemo {
+  struct Entry {
+    geo::Surface s;
+    geo::Curve of;
+    geo::Vec3 p0, p1;
+    double t0, t1, within;
+    Handle(Geom2d_Curve) pcurve;  // null: no pcurve of ours (ShapeFix makes one)
+  };
+  static constexpr std::size_t kEntries = 512;
+  std::mutex m;
+  std::deque<Entry> entries;  // newest first
+};
+PcurveMemo& pcurve_memo() {
+  static PcurveMemo memo;
+  return memo;
+}
+// A copy for the caller: the shape it goes into owns it, and nothing another shape holds
+// may change with it.
+Handle(Geom2d_Curve) copy_of(const Handle(Geom2d_Curve)& c) {
+  return c.IsNull() ? c : Handle(Geom2d_Curve)::DownCast(c->Copy());
+}
+}  // namespace
+
+Handle(Geom2d_Curve) projected_pcurve_remembered(const geo::Surface& s, const geo::Curve& of,
+                                                const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
+                                                double t0, double t1, double within) {
+  const gp_Pnt a = c->Value(t0), b = c->Value(t1);
+  const geo::Vec3 p0(a.X(), a.Y(), a.Z()), p1(b.X(), b.Y(), b.Z());
+  PcurveMemo& memo = pcurve_memo();
+  {
+    std::lock_guard<std::mutex> lock(memo.m);
+    for (const PcurveMemo::Entry& e : memo.entries)
+      if (e.t0 == t0 && e.t1 == t1 && e.within == within && e.p0 == p0 && e.p1 == p1 && e.of == of && e.s == s)
+        return copy_of(e.pcurve);
+  }
+  Handle(Geom2d_Curve) pc = projected_pcurve(s, gs, c, t0, t1, within);
+  std::lock_guard<std::mutex> lock(memo.m);
+  memo.entries.push_front({s, of, p0, p1, t0, t1, within, copy_of(pc)});
+  if (memo.entries.size() > PcurveMemo::kEntries) memo.entries.pop_back();
+  return pc;
 }
 
 }  // namespace kintsugi::io::occt

@@ -34,4 +34,13 @@ namespace kintsugi::io::occt {
 Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
                                      double t0, double t1, double within);
 
+// The same, remembered: the last few hundred answers, by the surface, the edge's own curve
+// `of` (from which `c` was made), c's ends, t0, t1 and `within` — the answer is a function
+// of these alone. The validity gate writes the touched region again for every repair it
+// judges, so the same edges of a free-form face's boundary were projected again and again
+// (a fifth of beautify's time on OpenCASCADE's linkrods.step).
+Handle(Geom2d_Curve) projected_pcurve_remembered(const geo::Surface& s, const geo::Curve& of,
+                                                const Handle(Geom_Surface)& gs, const Handle(Geom_Curve)& c,
+                                                double t0, double t1, double within);
+
 }  // namespace kintsugi::io::occt

@@ -515,21 +515,20 @@ class Builder {
   // pcurves of a free-form face's edges by our own projection (io/occt/pcurve.h), where
   // it can vouch for them; ShapeFix below does the rest. Seams (two pcurves a period
   // apart) are left to ShapeFix.
-  void project_pcurves(const geo::Surface& s, const std::vector<std::pair<LoopH, TopoDS_Wire>>& wires,
+  void project_pcurves(const geo::Surface& s, FaceH f, const std::vector<std::pair<LoopH, TopoDS_Wire>>& wires,
                        const TopoDS_Face& face) {
     const Handle(Geom_Surface) gs = BRep_Tool::Surface(face);
-    TopTools_MapOfShape seen, twice;
-    for (const auto& [l, w] : wires)
-      for (TopoDS_Iterator it(w); it.More(); it.Next())
-        if (!seen.Add(it.Value())) twice.Add(it.Value());
-    for (const auto& [l, w] : wires)
-      for (TopoDS_Iterator it(w); it.More(); it.Next()) {
-        const TopoDS_Edge e = TopoDS::Edge(it.Value());
-        if (twice.Contains(e) || BRep_Tool::Degenerated(e)) continue;
+    for (const auto& wire : wires)
+      for (HalfedgeH h : b_.loop_halfedges(wire.first)) {
+        const EdgeH edge = edge_of(h);
+        if (b_.face(twin(h)) == f) continue;  // a seam
+        const TopoDS_Edge e = TopoDS::Edge(out_.edge[edge.idx()]);
+        if (BRep_Tool::Degenerated(e)) continue;
         double t0, t1;
         const Handle(Geom_Curve) c = BRep_Tool::Curve(e, t0, t1);
         if (c.IsNull() || !(t1 > t0)) continue;
-        if (Handle(Geom2d_Curve) pc = projected_pcurve(s, gs, c, t0, t1, 0.5 * BRep_Tool::Tolerance(e)))
+        if (Handle(Geom2d_Curve) pc =
+                projected_pcurve_remembered(s, b_.curve(edge), gs, c, t0, t1, 0.5 * BRep_Tool::Tolerance(e)))
           bb_.UpdateEdge(e, pc, face, BRep_Tool::Tolerance(e));
       }
   }
@@ -555,7 +554,7 @@ class Builder {
       }
       wires.emplace_back(l, make_wire(l, sense));
     }
-    if (geo::is_freeform(s)) project_pcurves(s, wires, tf);
+    if (geo::is_freeform(s)) project_pcurves(s, f, wires, tf);
     // pcurves (and pole edges) per wire, in the context of the face without any wire.
     for (auto& [l, w] : wires) {
       ShapeFix_Wire fix(w, tf, tol_);

@@ -329,6 +329,21 @@ TEST(FreeForm, ProjectedPCurvesLieOnTheirCurves) {
   ASSERT_FALSE(over.IsNull());
   EXPECT_LE(pcurve_miss(ours, sheet, over, above, 0.0, 8.002), std::hypot(2e-3, 1e-3));
   EXPECT_NEAR(over->Value(0.0).X(), 0.0, 1e-12);
+  // Remembered (the validity gate writes the same edges again for each repair): asked
+  // again, the same pcurve, as a copy of its own; the line above the sheet is not the
+  // line on it, even though asked over the same parameters.
+  const geo::Curve on_sheet = geo::Line{{0, -0.5, 0}, {1, 0, 0}}, off_sheet = geo::Line{{0, -0.5, 3 * within}, {1, 0, 0}};
+  const Handle(Geom2d_Curve) first = io::occt::projected_pcurve_remembered(ours, on_sheet, sheet, line, 0.0, 8.0, within);
+  const Handle(Geom2d_Curve) again = io::occt::projected_pcurve_remembered(ours, on_sheet, sheet, line, 0.0, 8.0, within);
+  ASSERT_FALSE(first.IsNull());
+  ASSERT_FALSE(again.IsNull());
+  EXPECT_NE(first.get(), again.get());
+  for (double t : {0.0, 0.3, 4.1, 8.0}) {
+    EXPECT_NEAR(first->Value(t).X(), along->Value(t).X(), 1e-12);
+    EXPECT_EQ(again->Value(t).X(), first->Value(t).X());
+    EXPECT_EQ(again->Value(t).Y(), first->Value(t).Y());
+  }
+  EXPECT_TRUE(io::occt::projected_pcurve_remembered(ours, off_sheet, sheet, near, 0.0, 8.0, within).IsNull());
 
   Handle(Geom_Surface) quarter =
       new Geom_RectangularTrimmedSurface(new Geom_CylindricalSurface(gp_Ax3(gp::XOY()), 5.0), 0.0, M_PI / 2, 0.0, 10.0);
