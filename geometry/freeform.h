@@ -31,9 +31,11 @@ struct FreeformBackend {
   // Points along [t0, t1] within `chordal` of the curve, both ends included.
   std::vector<Vec3> (*curve_sample)(const Curve& c, double t0, double t1, double chordal);
   std::string (*curve_problem)(const Curve& c);
-  // Intersection curves of two surfaces (any of them free-form) near `near`: each as a
-  // B-spline curve (or an analytic curve where OpenCASCADE gives one).
-  std::vector<Curve> (*intersect)(const Surface& a, const Surface& b, double precision);
+  // Intersection curves of two surfaces (any of them free-form): each as a B-spline curve
+  // (or an analytic curve where OpenCASCADE gives one). With `near` (not null, not
+  // empty), only where the surfaces' parameters are within reach of those points: the
+  // intersection near a known stretch, at a fraction of the cost of the whole.
+  std::vector<Curve> (*intersect)(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>* near);
   // Forgets the last projection's foot on s (the next projection searches afresh): where
   // several parameters give one point (a pole), which one a projection returns depends on
   // where it starts, and a face's parameter domain must not depend on what was projected

@@ -194,7 +194,7 @@ SurfaceIntersection intersect_surfaces(const Surface& a, const Surface& b, const
       out.problem = freeform_unavailable();
       return out;
     }
-    out.curves = fb->intersect(a, b, o.precision);
+    out.curves = fb->intersect(a, b, o.precision, nullptr);
     out.kind = out.curves.empty() ? IntersectionKind::empty : IntersectionKind::curves;
     return out;
   }
@@ -219,10 +219,10 @@ SurfaceIntersection intersect_surfaces(const Surface& a, const Surface& b, const
   return detail::intersect_march(a, b, o);
 }
 
-std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision) {
+std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>* near) {
   const FreeformBackend* fb = freeform_backend();
   if (!fb) return {};
-  return fb->intersect(a, b, precision);
+  return fb->intersect(a, b, precision, near);
 }
 
 std::vector<Curve> intersect(const Surface& a, const Surface& b, const IntersectOptions& o) {

@@ -73,7 +73,11 @@ std::vector<Curve> intersect(const Surface& a, const Surface& b, const Intersect
 // intersect() marches (no closed form), its polylines are 0.01 tol off the surfaces
 // between their points, which a written file keeps; an edge can take one of these
 // instead (repair/beautify_geometry.cpp, derive_edge_curve).
-std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision);
+// With `near`: only the curves near those points (a marched branch's), found in the
+// surfaces' parameter windows around them — several times faster on OpenCASCADE's Top.brep,
+// whose tori and cylinders have no closed-form intersection.
+std::vector<Curve> intersect_exact(const Surface& a, const Surface& b, double precision,
+                                   const std::vector<Vec3>* near = nullptr);
 
 struct BranchChoice {
   std::size_t index = 0;

@@ -147,7 +147,8 @@ geo::Curve own_piece(const geo::Curve& c, const geo::Vec3& p0, const geo::Vec3& 
 geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, const geo::Surface& sg,
                            const geo::Vec3& p0, const geo::Vec3& p1, bool closed, const geo::Tolerances& tol) {
   if (!std::holds_alternative<geo::Polyline>(marched) || closed) return marched;
-  for (const geo::Curve& c : geo::intersect_exact(sf, sg, tol.precision)) {
+  const std::vector<geo::Vec3>& along = std::get<geo::Polyline>(marched).points;
+  for (const geo::Curve& c : geo::intersect_exact(sf, sg, tol.precision, &along)) {
     if (std::holds_alternative<geo::Polyline>(c) || std::holds_alternative<std::monostate>(c) ||
         !on_both_between(c, p0, p1, false, sf, sg, tol))
       continue;

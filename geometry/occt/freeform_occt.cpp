@@ -12,6 +12,7 @@
 #include <GCPnts_AbscissaPoint.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GeomAPI_IntSS.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
@@ -22,6 +23,7 @@
 #include <Geom_Line.hxx>
 #include <Geom_OffsetSurface.hxx>
 #include <Geom_Plane.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_SphericalSurface.hxx>
 #include <Geom_SurfaceOfLinearExtrusion.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
@@ -481,15 +483,86 @@ std::optional<Curve> from_geom(const Handle(Geom_Curve)& c) {
   return std::nullopt;
 }
 
+// The part of `s` (as OpenCASCADE's surface `gs`) whose parameters are within reach of
+// `near`: the box of the points' feet, widened on each side by a quarter of its width and
+// by at least the points' own spread (over the surface's speed there), within the
+// surface's bounds; a periodic direction is cut where the feet leave their widest gap
+// round the period, and left whole when the window would wrap. Null when no window can be
+// told (a foot at a degenerate point, where the speed vanishes): the whole surface then.
+Handle(Geom_Surface) window(const Surface& s, const Handle(Geom_Surface)& gs, const std::vector<Vec3>& near) {
+  if (near.empty() || gs.IsNull()) return nullptr;
+  constexpr std::size_t kFeet = 17;  // spread evenly along the points, both ends included
+  const std::size_t n = std::min(kFeet, near.size());
+  std::vector<double> us, vs;
+  Bnd_Box box;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Vec3& p = near[n == 1 ? 0 : j * (near.size() - 1) / (n - 1)];
+    Vec2 uv;
+    if (is_freeform(s)) {
+      uv = surface_project(s, p);
+    } else {
+      GeomAPI_ProjectPointOnSurf proj(pnt(p), gs);
+      if (!proj.IsDone() || proj.NbPoints() == 0) return nullptr;
+      double u, v;
+      proj.LowerDistanceParameters(u, v);
+      uv = Vec2(u, v);
+    }
+    us.push_back(uv.x());
+    vs.push_back(uv.y());
+    box.Add(pnt(p));
+  }
+  const double spread = std::sqrt(box.SquareExtent());
+  double ub0, ub1, vb0, vb1;
+  gs->Bounds(ub0, ub1, vb0, vb1);
+  // [lo, hi] of one direction's feet; periodic values unwrapped across their widest gap.
+  auto range = [](std::vector<double> x, bool periodic, double period, double* lo, double* hi) {
+    std::sort(x.begin(), x.end());
+    *lo = x.front(), *hi = x.back();
+    if (!periodic || x.size() < 2) return;
+    double gap = x.front() + period - x.back();
+    for (std::size_t i = 0; i + 1 < x.size(); ++i)
+      if (x[i + 1] - x[i] > gap) gap = x[i + 1] - x[i], *lo = x[i + 1], *hi = x[i] + period;
+  };
+  double u0, u1, v0, v1;
+  range(us, gs->IsUPeriodic(), gs->IsUPeriodic() ? gs->UPeriod() : 0, &u0, &u1);
+  range(vs, gs->IsVPeriodic(), gs->IsVPeriodic() ? gs->VPeriod() : 0, &v0, &v1);
+  gp_Pnt mid;
+  gp_Vec du, dv;
+  try {
+    gs->D1(0.5 * (u0 + u1), 0.5 * (v0 + v1), mid, du, dv);
+  } catch (const Standard_Failure&) {
+    return nullptr;
+  }
+  if (!(du.Magnitude() > 1e-12 * (1 + spread)) || !(dv.Magnitude() > 1e-12 * (1 + spread))) return nullptr;
+  const double wu = std::max(0.25 * (u1 - u0), spread / du.Magnitude());
+  const double wv = std::max(0.25 * (v1 - v0), spread / dv.Magnitude());
+  u0 -= wu, u1 += wu, v0 -= wv, v1 += wv;
+  const bool u_whole = gs->IsUPeriodic() && u1 - u0 >= gs->UPeriod();
+  const bool v_whole = gs->IsVPeriodic() && v1 - v0 >= gs->VPeriod();
+  if (!gs->IsUPeriodic()) u0 = std::max(u0, ub0), u1 = std::min(u1, ub1);
+  if (!gs->IsVPeriodic()) v0 = std::max(v0, vb0), v1 = std::min(v1, vb1);
+  if (!(u1 > u0) || !(v1 > v0)) return nullptr;
+  try {
+    if (u_whole && v_whole) return nullptr;
+    if (u_whole) return new Geom_RectangularTrimmedSurface(gs, v0, v1, Standard_False);
+    if (v_whole) return new Geom_RectangularTrimmedSurface(gs, u0, u1, Standard_True);
+    return new Geom_RectangularTrimmedSurface(gs, u0, u1, v0, v1);
+  } catch (const Standard_Failure&) {
+    return nullptr;
+  }
+}
+
 // The last few intersections, for the pairs asked again: a repair refused and tried again
 // in a later round, or in the run beautify starts over (CrankArm.brep at tolerance 0.175
 // met the same pinch's edge curve a dozen times, two thirds of its time in
-// GeomAPI_IntSS). The answer is a function of the two surfaces' data and the precision
-// alone; the surfaces are kept by value (their caches shared), compared by value.
+// GeomAPI_IntSS). The answer is a function of the two surfaces' data, the precision and
+// the points it is asked near alone; all are kept by value (the surfaces' caches
+// shared), compared by value.
 struct IntersectionMemo {
   struct Entry {
     Surface a, b;
     double precision;
+    std::vector<Vec3> near;
     std::vector<Curve> curves;
   };
   static constexpr std::size_t kEntries = 64;
@@ -502,26 +575,31 @@ IntersectionMemo& intersection_memo() {
   return memo;
 }
 
-std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision);
+std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>& near);
 
-std::vector<Curve> intersect(const Surface& a, const Surface& b, double precision) {
+std::vector<Curve> intersect(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>* near_points) {
+  static const std::vector<Vec3> kNowhere;
+  const std::vector<Vec3>& near = near_points ? *near_points : kNowhere;
   IntersectionMemo& memo = intersection_memo();
   {
     std::lock_guard<std::mutex> lock(memo.m);
     for (const IntersectionMemo::Entry& e : memo.entries)
-      if (e.precision == precision && e.a == a && e.b == b) return e.curves;
+      if (e.precision == precision && e.a == a && e.b == b && e.near == near) return e.curves;
   }
-  std::vector<Curve> out = intersect_uncached(a, b, precision);
+  std::vector<Curve> out = intersect_uncached(a, b, precision, near);
   std::lock_guard<std::mutex> lock(memo.m);
-  memo.entries.push_front({a, b, precision, out});
+  memo.entries.push_front({a, b, precision, near, out});
   if (memo.entries.size() > IntersectionMemo::kEntries) memo.entries.pop_back();
   return out;
 }
 
-std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision) {
+std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>& near) {
   std::vector<Curve> out;
   try {
-    GeomAPI_IntSS inter(any_surface(a), any_surface(b), std::max(precision, Precision::Confusion()));
+    Handle(Geom_Surface) ga = any_surface(a), gb = any_surface(b);
+    if (Handle(Geom_Surface) wa = window(a, ga, near)) ga = wa;
+    if (Handle(Geom_Surface) wb = window(b, gb, near)) gb = wb;
+    GeomAPI_IntSS inter(ga, gb, std::max(precision, Precision::Confusion()));
     if (!inter.IsDone()) return out;
     for (int i = 1; i <= inter.NbLines(); ++i)
       if (std::optional<Curve> c = from_geom(inter.Line(i))) out.push_back(*c);

@@ -167,16 +167,64 @@ TEST(FreeForm, IntersectionsAskedAgainAreTheSame) {
     }
     return worst;
   };
-  const std::vector<geo::Curve> at3 = ff.intersect(patch, plane_at(3), 1e-7);
-  const std::vector<geo::Curve> at6 = ff.intersect(patch, plane_at(6), 1e-7);
-  const std::vector<geo::Curve> at3_again = ff.intersect(patch, plane_at(3), 1e-7);
+  const std::vector<geo::Curve> at3 = ff.intersect(patch, plane_at(3), 1e-7, nullptr);
+  const std::vector<geo::Curve> at6 = ff.intersect(patch, plane_at(6), 1e-7, nullptr);
+  const std::vector<geo::Curve> at3_again = ff.intersect(patch, plane_at(3), 1e-7, nullptr);
   ASSERT_FALSE(at3.empty());
   ASSERT_FALSE(at6.empty());
   EXPECT_LT(in_plane(at3, 3), 1e-6);
   EXPECT_LT(in_plane(at6, 6), 1e-6);
   EXPECT_TRUE(at3_again == at3);
   // A copy of the patch's data (no shared cache) is the same surface.
-  EXPECT_TRUE(ff.intersect(geo::occt::bspline_data(wavy_patch(0.0)), plane_at(6), 1e-7) == at6);
+  EXPECT_TRUE(ff.intersect(geo::occt::bspline_data(wavy_patch(0.0)), plane_at(6), 1e-7, nullptr) == at6);
+}
+
+// Near a known stretch (a marched branch's points, repair/beautify_geometry.cpp), the
+// backend intersects only the surfaces' parameter windows around it: the curves it gives
+// still run through the stretch and lie in the plane, and end within reach of it rather
+// than cross the whole patch. The x = 3 plane across the wavy patch, near the stretch of
+// the whole intersection with y in [4, 5]; the patch spans y in [0, 10].
+TEST(FreeForm, IntersectionNearAStretchIsTheCurveThere) {
+  geo::occt::register_freeform_backend();
+  const geo::Surface patch = geo::occt::bspline_data(wavy_patch(0.0));
+  geo::Plane plane;
+  plane.frame.origin = geo::Vec3(3, 0, 0);
+  plane.frame.z = geo::Vec3::UnitX();
+  plane.frame.x = geo::Vec3::UnitY();
+  const auto& ff = geo::require_freeform();
+  const std::vector<geo::Curve> whole = ff.intersect(patch, plane, 1e-7, nullptr);
+  ASSERT_EQ(whole.size(), 1u);
+  double t0 = 0, t1 = 1;
+  ff.curve_bounds(whole[0], &t0, &t1);
+  std::vector<geo::Vec3> stretch;
+  for (int i = 0; i <= 400; ++i) {
+    const geo::Vec3 p = geo::evaluate(whole[0], t0 + (t1 - t0) * i / 400);
+    if (p.y() >= 4 && p.y() <= 5) stretch.push_back(p);
+  }
+  ASSERT_GT(stretch.size(), 10u);
+  const std::vector<geo::Curve> near = ff.intersect(patch, plane, 1e-7, &stretch);
+  ASSERT_FALSE(near.empty());
+  double y_min = HUGE_VAL, y_max = -HUGE_VAL, off_plane = 0;
+  for (const geo::Curve& c : near) {
+    double a = 0, b = 1;
+    ff.curve_bounds(c, &a, &b);
+    for (int i = 0; i <= 64; ++i) {
+      const geo::Vec3 p = geo::evaluate(c, a + (b - a) * i / 64);
+      y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+      off_plane = std::max(off_plane, std::abs(p.x() - 3));
+      EXPECT_LT(std::abs(geo::signed_distance(patch, p)), 1e-6);
+    }
+  }
+  EXPECT_LT(off_plane, 1e-6);
+  for (const geo::Vec3& p : stretch) {
+    double nearest = HUGE_VAL;
+    for (const geo::Curve& c : near) nearest = std::min(nearest, geo::closest_point(c, p).distance);
+    EXPECT_LT(nearest, 1e-6);
+  }
+  EXPECT_LE(y_min, 4.0);
+  EXPECT_GE(y_max, 5.0);
+  EXPECT_GT(y_min, 1.0);  // not the whole patch's crossing
+  EXPECT_LT(y_max, 9.0);
 }
 
 // A projection with no last foot to follow starts from a seed grid's local minima
