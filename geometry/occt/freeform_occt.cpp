@@ -5,6 +5,7 @@
 #include "geometry/occt/freeform_occt.h"
 
 #include "geometry/freeform.h"
+#include "geometry/recent_answers.h"
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BndLib_AddSurface.hxx>
@@ -44,7 +45,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <deque>
 #include <mutex>
 #include <stdexcept>
 
@@ -558,20 +558,15 @@ Handle(Geom_Surface) window(const Surface& s, const Handle(Geom_Surface)& gs, co
 // GeomAPI_IntSS). The answer is a function of the two surfaces' data, the precision and
 // the points it is asked near alone; all are kept by value (the surfaces' caches
 // shared), compared by value.
-struct IntersectionMemo {
-  struct Entry {
-    Surface a, b;
-    double precision;
-    std::vector<Vec3> near;
-    std::vector<Curve> curves;
-  };
-  static constexpr std::size_t kEntries = 64;
-  std::mutex m;
-  std::deque<Entry> entries;  // newest first
+struct IntersectionQuestion {
+  Surface a, b;
+  double precision;
+  std::vector<Vec3> near;
+  std::vector<Curve> curves;
 };
 
-IntersectionMemo& intersection_memo() {
-  static IntersectionMemo memo;
+RecentAnswers<IntersectionQuestion, 64>& recent_intersections() {
+  static RecentAnswers<IntersectionQuestion, 64> memo;
   return memo;
 }
 
@@ -580,16 +575,12 @@ std::vector<Curve> intersect_uncached(const Surface& a, const Surface& b, double
 std::vector<Curve> intersect(const Surface& a, const Surface& b, double precision, const std::vector<Vec3>* near_points) {
   static const std::vector<Vec3> kNowhere;
   const std::vector<Vec3>& near = near_points ? *near_points : kNowhere;
-  IntersectionMemo& memo = intersection_memo();
-  {
-    std::lock_guard<std::mutex> lock(memo.m);
-    for (const IntersectionMemo::Entry& e : memo.entries)
-      if (e.precision == precision && e.a == a && e.b == b && e.near == near) return e.curves;
-  }
+  if (auto known = recent_intersections().find(
+          [&](const IntersectionQuestion& e) { return e.precision == precision && e.a == a && e.b == b && e.near == near; },
+          [](const IntersectionQuestion& e) { return e.curves; }))
+    return *known;
   std::vector<Curve> out = intersect_uncached(a, b, precision, near);
-  std::lock_guard<std::mutex> lock(memo.m);
-  memo.entries.push_front({a, b, precision, near, out});
-  if (memo.entries.size() > IntersectionMemo::kEntries) memo.entries.pop_back();
+  recent_intersections().remember({a, b, precision, near, out});
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "io/occt/pcurve.h"
 
 #include "geometry/occt/freeform_occt.h"
+#include "geometry/recent_answers.h"
 #include "geometry/surface.h"
 
 #include <GeomAdaptor_Curve.hxx>
@@ -18,8 +19,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
-#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -271,20 +270,15 @@ Handle(Geom2d_Curve) projected_pcurve(const geo::Surface& s, const Handle(Geom_S
 }
 
 namespace {
-struct PcurveMemo {
-  struct Entry {
-    geo::Surface s;
-    geo::Curve of;
-    geo::Vec3 p0, p1;
-    double t0, t1, within;
-    Handle(Geom2d_Curve) pcurve;  // null: no pcurve of ours (ShapeFix makes one)
-  };
-  static constexpr std::size_t kEntries = 512;
-  std::mutex m;
-  std::deque<Entry> entries;  // newest first
+struct PcurveQuestion {
+  geo::Surface s;
+  geo::Curve of;
+  geo::Vec3 p0, p1;
+  double t0, t1, within;
+  Handle(Geom2d_Curve) pcurve;  // null: no pcurve of ours (ShapeFix makes one)
 };
-PcurveMemo& pcurve_memo() {
-  static PcurveMemo memo;
+geo::RecentAnswers<PcurveQuestion, 512>& recent_pcurves() {
+  static geo::RecentAnswers<PcurveQuestion, 512> memo;
   return memo;
 }
 // A copy for the caller: the shape it goes into owns it, and nothing another shape holds
@@ -299,17 +293,14 @@ Handle(Geom2d_Curve) projected_pcurve_remembered(const geo::Surface& s, const ge
                                                 double t0, double t1, double within) {
   const gp_Pnt a = c->Value(t0), b = c->Value(t1);
   const geo::Vec3 p0(a.X(), a.Y(), a.Z()), p1(b.X(), b.Y(), b.Z());
-  PcurveMemo& memo = pcurve_memo();
-  {
-    std::lock_guard<std::mutex> lock(memo.m);
-    for (const PcurveMemo::Entry& e : memo.entries)
-      if (e.t0 == t0 && e.t1 == t1 && e.within == within && e.p0 == p0 && e.p1 == p1 && e.of == of && e.s == s)
-        return copy_of(e.pcurve);
-  }
+  if (auto known = recent_pcurves().find(
+          [&](const PcurveQuestion& e) {
+            return e.t0 == t0 && e.t1 == t1 && e.within == within && e.p0 == p0 && e.p1 == p1 && e.of == of && e.s == s;
+          },
+          [](const PcurveQuestion& e) { return copy_of(e.pcurve); }))
+    return *known;
   Handle(Geom2d_Curve) pc = projected_pcurve(s, gs, c, t0, t1, within);
-  std::lock_guard<std::mutex> lock(memo.m);
-  memo.entries.push_front({s, of, p0, p1, t0, t1, within, copy_of(pc)});
-  if (memo.entries.size() > PcurveMemo::kEntries) memo.entries.pop_back();
+  recent_pcurves().remember({s, of, p0, p1, t0, t1, within, copy_of(pc)});
   return pc;
 }
 
