@@ -129,7 +129,9 @@ TEST(Pipeline, ASideWithoutItsSeamIsLeftAsItIs) {
   BeautifyReport r = beautify(b, tol);
   for (const RepairEntry& e : r.problems) {
     EXPECT_FALSE(e.repaired()) << problem_name(e.problem.type) << ": " << e.reason;
-    if (e.outcome == Outcome::refused) EXPECT_NE(e.reason.find("loop_without_seam"), std::string::npos) << e.reason;
+    if (e.outcome == Outcome::refused) {
+      EXPECT_NE(e.reason.find("loop_without_seam"), std::string::npos) << e.reason;
+    }
   }
   std::string why;
   EXPECT_TRUE(b.equals(before, &why)) << why;

@@ -351,7 +351,9 @@ TEST(Detect, AnAcuteCornerCutByAShortEdgeIsASpikeOnlyWhenItsSidesRunSideBySide) 
     Detection found = detect(b, tol_for(b, t));
     EXPECT_EQ(found.count(ProblemType::pinched_face), degrees < 20 ? 2 : 0) << degrees << "°\n" << describe(found);
     for (const Problem& p : found.problems)
-      if (p.type == ProblemType::pinched_face) EXPECT_EQ(p.subcase.location, PinchLocation::spiking) << describe(found);
+      if (p.type == ProblemType::pinched_face) {
+        EXPECT_EQ(p.subcase.location, PinchLocation::spiking) << describe(found);
+      }
   }
 }
 
