@@ -273,6 +273,9 @@ KnownDefect ring_band(Body& b, EdgeH c, double into_cap, double into_side, bool 
   const auto* cyl = std::get_if<geo::Cylinder>(&b.surface(A));
   const auto* plane = P.valid() ? std::get_if<geo::Plane>(&b.surface(P)) : nullptr;
   if (!cyl || !plane) throw Unsuitable(c.str() + " is not between a cylinder and a plane");
+  // By value: the surfaces' storage grows when mef makes the band below, and a pointer
+  // into it then dangles (AddressSanitizer, Detect.NearOfOneTypeIsNearFilteredToIt).
+  const double radius = cyl->radius;
   const Vec3 axis = cyl->frame.z.normalized();
   if (std::abs(std::abs(plane->frame.z.normalized().dot(axis)) - 1) > 1e-9)
     throw Unsuitable(c.str() + ": the plane is not square to the cylinder's axis");
@@ -309,7 +312,7 @@ KnownDefect ring_band(Body& b, EdgeH c, double into_cap, double into_side, bool 
     torus.frame.origin = centre + into_side * along;
     torus.frame.z = -along;
     torus.frame.x = radial;
-    torus.major_radius = cyl->radius + inward * into_cap;
+    torus.major_radius = radius + inward * into_cap;
     torus.minor_radius = into_cap;
     band_surface = torus;
     // The seam along the tube: a quarter circle about the tube's centre.
@@ -321,7 +324,7 @@ KnownDefect ring_band(Body& b, EdgeH c, double into_cap, double into_side, bool 
     cone.frame.origin = centre + into_side * along;
     cone.frame.z = -along;
     cone.frame.x = radial;
-    cone.radius = cyl->radius;
+    cone.radius = radius;
     cone.half_angle = std::atan2(inward * into_cap, into_side);
     band_surface = cone;
     set_line(b, edge_of(seam));
