@@ -9,6 +9,7 @@
 #include "repair/detect_detail.h"
 #include "repair/detect_threads.h"
 #include "zoo/defects.h"
+#include "zoo/defects_slivers.h"
 #include "zoo/zoo.h"
 
 #include <gtest/gtest.h>
@@ -355,6 +356,32 @@ TEST(Detect, AnAcuteCornerCutByAShortEdgeIsASpikeOnlyWhenItsSidesRunSideBySide) 
         EXPECT_EQ(p.subcase.location, PinchLocation::spiking) << describe(found);
       }
   }
+}
+
+// A scanned fillet or chamfer of a cylinder's circle far narrower than the tolerance is
+// one sliver: the band (zoo::make::ring_fillet, ring_chamfer), measured by its mean
+// circumference. Each circle of the cylinder in turn, in a fresh body (the band's making
+// once read the cylinder through a pointer its own new face left dangling: AddressSanitizer).
+TEST(Detect, ARingBandOnACylinderIsOneSliver) {
+  const double t = 0.05;
+  for (bool round : {true, false})
+    for (int k = 0; k < 2; ++k) {
+      // A copy: its storage is as large as its contents, so the band's new face moves it.
+      const Body made_by_builder = build::cylinder(1.0, 2.0);
+      Body b = made_by_builder;
+      std::vector<EdgeH> circles;
+      for (EdgeH e : b.edges())
+        if (std::holds_alternative<geo::Circle>(b.curve(e))) circles.push_back(e);
+      ASSERT_EQ(circles.size(), 2u);
+      zoo::KnownDefect made = round ? zoo::make::ring_fillet(b, circles[std::size_t(k)], 0.2 * t)
+                                    : zoo::make::ring_chamfer(b, circles[std::size_t(k)], 0.2 * t, 0.3 * t);
+      Detection d = detect(b, tol_for(b, t));
+      EXPECT_EQ(d.count(ProblemType::sliver_face), 1) << describe(d);
+      EXPECT_EQ(d.problems.size(), 1u) << describe(d);
+      if (!d.problems.empty()) {
+        EXPECT_EQ(element_names(d.problems[0]), made.elements) << describe(d);
+      }
+    }
 }
 
 TEST(Detect, ShortEdgeChainAndMergeableVertex) {
