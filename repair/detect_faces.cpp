@@ -316,6 +316,9 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
         if (cut_b[x]) pb = trim(pb, t, x == 0);
       }
       bool joined = cut_a[0] || cut_a[1];
+      const geo::ClosestPair cp = nearest(pa, pb);
+      if (!(cp.distance < t)) continue;
+      const double parallel = parallelism(pa, pb, cp);
       if (!joined) {
         // A neck cuts the face in two large pieces (paper 4.2): each way round the loop
         // from one closest point to the other is long. Where one way is shorter than 2t,
@@ -325,30 +328,26 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
         // as a neck only made a small face. Read as a neck (a box's edge broken by a chain:
         // the pieces 0.77 t apart through 1.45 t of the chain's edges), pass 4 refused it
         // and left a "pinch" for pass 5 in half the Table 1 audit's small-face-chain trials.
-        const geo::ClosestPair cp = nearest(pa, pb);
-        if (!(cp.distance < t)) continue;
         const auto at = [&](const Side& x, const std::vector<geo::Vec3>& pts, std::size_t k, double s) {
           const double whole = arc_length(pts), edge = pre[x.pos + 1] - pre[x.pos];
           return pre[x.pos] + (whole > 0 ? arc_to(pts, k, s) / whole * edge : 0.0);
         };
         const double one_way = at(B, pb, cp.segment_b, cp.t) - at(A, pa, cp.segment_a, cp.s);
         if (std::min(one_way, pre[n] - one_way) < 2 * t) continue;
-        pairs.push_back({cp.distance, A.h, B.h, PinchLocation::necking, cp.on_a, cp.on_b, parallelism(pa, pb, cp)});
-        continue;
+      } else {
+        // A spike is two sides running nearly side by side. Two straight sides meeting at
+        // an angle θ through a short stretch come within t of each other after the cut
+        // whenever θ < 60°: a designed corner — a pyramid's 60° face corner with a short
+        // edge at its tip, which a sliver's removal left there for pass 9 — read as a
+        // spike (the Table 1 audit's sliver_face -> pinched_face at 0.98 t, a measure the
+        // cut makes proportional to t, so judging at another tolerance did not tell).
+        // Only sides within kSpikeAngle of parallel where they are closest are a spike: a
+        // corner that sharp is narrower than t for 2.9 t from its tip.
+        constexpr double kSpikeAngle = 20.0 * 3.14159265358979323846 / 180.0;
+        if (parallel < std::cos(kSpikeAngle)) continue;
       }
-      // A spike is two sides running nearly side by side. Two straight sides meeting at
-      // an angle θ through a short stretch come within t of each other after the cut
-      // whenever θ < 60°: a designed corner — a pyramid's 60° face corner with a short
-      // edge at its tip, which a sliver's removal left there for pass 9 — read as a
-      // spike (the Table 1 audit's sliver_face -> pinched_face at 0.98 t, a measure the
-      // cut makes proportional to t, so judging at another tolerance did not tell).
-      // Only sides within kSpikeAngle of parallel where they are closest are a spike: a
-      // corner that sharp is narrower than t for 2.9 t from its tip.
-      constexpr double kSpikeAngle = 20.0 * 3.14159265358979323846 / 180.0;
-      const geo::ClosestPair cp = nearest(pa, pb);
-      const double parallel = parallelism(pa, pb, cp);
-      if (cp.distance < t && parallel >= std::cos(kSpikeAngle))
-        pairs.push_back({cp.distance, A.h, B.h, PinchLocation::spiking, cp.on_a, cp.on_b, parallel});
+      pairs.push_back({cp.distance, A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking, cp.on_a, cp.on_b,
+                       parallel});
     }
     // Each place where the face is pinched is its own problem (the paper resolves
     // several pinchings of one face one after another), reported at its closest pair.
