@@ -1,5 +1,6 @@
 #include "geometry/surface_params.h"
 
+#include "geometry/exact_manifolds.h"
 #include "geometry/surface.h"
 
 #include <cmath>
@@ -21,9 +22,11 @@ std::vector<std::pair<double*, int>> SurfaceParams::blocks() {
 }
 
 ceres::Manifold* SurfaceParams::manifold(std::size_t block) const {
-  if (kind == SurfaceKind::plane && block == 0) return new ceres::SphereManifold<3>();
-  if ((kind == SurfaceKind::cylinder || kind == SurfaceKind::cone) && block == 0) return new ceres::LineManifold<3>();
-  if (kind == SurfaceKind::torus && block == 1) return new ceres::SphereManifold<3>();
+  // Not Ceres's SphereManifold and LineManifold: near the z axis they snap a direction
+  // onto it on every step (exact_manifolds.h).
+  if (kind == SurfaceKind::plane && block == 0) return new UnitDirectionManifold();
+  if ((kind == SurfaceKind::cylinder || kind == SurfaceKind::cone) && block == 0) return new AxisLineManifold();
+  if (kind == SurfaceKind::torus && block == 1) return new UnitDirectionManifold();
   return nullptr;
 }
 

@@ -350,6 +350,27 @@ TEST(Beautify, PinchThatAMergeBringsBelowTheToleranceIsRepairedInASecondRound) {
   EXPECT_TRUE(b.equals(once, &why)) << why;
 }
 
+// A boss a hair inside a pentagonal prism's side, its edge slanting from 0.015 to 0.008
+// of the side's edge: the zip tilts the boss's side to meet the prism's next side, and
+// its top and bottom (normals along z) must tilt by about 1e-8 to stay on the moved
+// vertices. Ceres's SphereManifold snapped those normals back onto z on every step, and
+// the solve stopped at 1.005 precisions (CI, rapidcheck: InjectedDefectsOfTypes7To11AreRepaired).
+TEST(Beautify, PinchWhoseSolveTiltsPlanesNormalToZByAHairIsRepaired) {
+  const double t = 0.02;
+  Body b = random_solid(3);
+  const Counts clean = b.counts();
+  std::string err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::pinched_face, 117164, std::nullopt, t, &err)) << err;
+  geo::Tolerances tol = tol_for(b, t);
+  ASSERT_EQ(detect(b, tol).count(ProblemType::pinched_face), 1);
+  BeautifyReport r = beautify(b, tol);
+  EXPECT_TRUE(r.left.empty()) << describe(r);
+  EXPECT_TRUE(check_topology(b).empty());
+  EXPECT_TRUE(check_geometry(b, tol.precision).violations.empty());
+  // The boss stays (6 faces, now one with the prism's side), joined to the side's edge.
+  EXPECT_EQ(b.counts().faces, clean.faces + 5) << describe(r);
+}
+
 }  // namespace
 }  // namespace kintsugi
 
