@@ -91,7 +91,47 @@ struct OnSolvedSurface {
   }
 };
 
+// The offset of a variable point (the last block) from the half-plane of a solved
+// periodic surface's seam, where u = 0: through the axis, across m = unit(axis × x_old)
+// (surface_from keeps the frame's x as near x_old as the new axis allows, so its seam
+// lies in this half-plane). A sphere's axis is not solved: `fixed_axis`.
+struct OnSolvedSeam {
+  SurfaceKind kind;
+  int surface_blocks;
+  Vec3 x_old, fixed_axis;
+  const double* w;
+  template <typename T>
+  bool operator()(T const* const* q, T* r) const {
+    using std::sqrt;
+    const T* x = q[surface_blocks];
+    const T* o = q[0];
+    T d[3];
+    for (int i = 0; i < 3; ++i)
+      d[i] = kind == SurfaceKind::torus ? q[1][i] : kind == SurfaceKind::sphere ? T(fixed_axis[i]) : q[0][3 + i];
+    const T m[3] = {d[1] * x_old[2] - d[2] * x_old[1], d[2] * x_old[0] - d[0] * x_old[2], d[0] * x_old[1] - d[1] * x_old[0]};
+    const T len = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + 1e-300);
+    r[0] = T(*w) * ((x[0] - o[0]) * m[0] + (x[1] - o[1]) * m[1] + (x[2] - o[2]) * m[2]) / len;
+    return true;
+  }
+};
+
 }  // namespace
+
+ceres::CostFunction* on_solved_seam(SurfaceParams& p, const Vec3& x_old, const Vec3& fixed_axis, const double* w,
+                                    std::vector<double*>& blocks) {
+  if (p.kind == SurfaceKind::plane) return nullptr;
+  auto bl = p.blocks();
+  auto* f = new ceres::DynamicAutoDiffCostFunction<OnSolvedSeam, 4>(
+      new OnSolvedSeam{p.kind, int(bl.size()), x_old, fixed_axis, w});
+  blocks.clear();
+  for (auto [ptr, size] : bl) {
+    f->AddParameterBlock(size);
+    blocks.push_back(ptr);
+  }
+  f->AddParameterBlock(3);
+  f->SetNumResiduals(1);
+  return f;
+}
 
 Surface surface_from(const Surface& old, const SurfaceParams& q) {
   const Vec3 a0(q.a[0], q.a[1], q.a[2]), a1(q.a[3], q.a[4], q.a[5]);

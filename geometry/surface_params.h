@@ -97,6 +97,14 @@ T surface_distance(SurfaceKind kind, T const* const* q, const T* x) {
 ceres::CostFunction* on_solved_surface(SurfaceParams& p, bool variable_point, const Vec3& fixed_point,
                                        const double* w, std::vector<double*>& blocks);
 
+// Residual w·(offset of a variable point from the seam half-plane of a solved periodic
+// surface: through its axis, on the side of its frame's x), so that a vertex of a seam
+// edge stays on the seam while the surface moves; x_old is the frame's x before the
+// solve, `fixed_axis` a sphere's axis (not solved). nullptr for a plane. Blocks:
+// `p.blocks()`, then the point's; `blocks` receives their pointers.
+ceres::CostFunction* on_solved_seam(SurfaceParams& p, const Vec3& x_old, const Vec3& fixed_axis, const double* w,
+                                    std::vector<double*>& blocks);
+
 // Prior w·(x − p0) keeping a variable point (one block of 3) near p0: a vertex near where
 // its repair put it (the region solve), a meeting point near its guess (meet_point).
 struct NearPoint {

@@ -1,6 +1,7 @@
 // Geometry shared by the repairs: handles from problem text, edge curves from the faces
 // beside them, vertices where their faces meet, and the local consistency check.
 #include "geometry/curve.h"
+#include "geometry/frame.h"
 #include "geometry/intersect.h"
 #include "geometry/meet_point.h"
 #include "geometry/same_geometry.h"
@@ -158,6 +159,40 @@ geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, co
   return marched;
 }
 
+// Curves through p0 and p1 that lie on both surfaces where the surfaces coincide (two
+// pieces of one face, left for pass 8 to merge, meeting across a gap's new edge): no
+// intersection to compute there. The chord (a ruling of a cylinder or cone, a line of a
+// plane) and the circle about the axis at the vertices' height (a cylinder's, cone's,
+// sphere's or torus's parallel), each kept where it lies on both surfaces, checked
+// between the vertices.
+std::vector<geo::Curve> common_iso_curves(const geo::Surface& sf, const geo::Surface& sg, const geo::Vec3& p0,
+                                          const geo::Vec3& p1, const geo::Tolerances& tol) {
+  std::vector<geo::Curve> out;
+  auto on_both = [&](const geo::Vec3& q) {
+    return std::abs(geo::signed_distance(sf, q)) <= tol.precision && std::abs(geo::signed_distance(sg, q)) <= tol.precision;
+  };
+  if ((p1 - p0).norm() <= tol.precision) return out;
+  if (on_both(p0 + 0.25 * (p1 - p0)) && on_both(0.5 * (p0 + p1)) && on_both(p0 + 0.75 * (p1 - p0)))
+    out.push_back(geo::Line{p0, (p1 - p0).normalized()});
+  if (const geo::Frame* f = seam_frame(sf)) {
+    const geo::Vec3 r0 = p0 - f->origin, r1 = p1 - f->origin;
+    const double h0 = r0.dot(f->z), h1 = r1.dot(f->z);
+    const geo::Vec3 a0 = r0 - h0 * f->z, a1 = r1 - h1 * f->z;
+    if (std::abs(h0 - h1) <= tol.precision && std::abs(a0.norm() - a1.norm()) <= tol.precision && a0.norm() > tol.precision) {
+      geo::Circle c{geo::Frame{f->origin + h0 * f->z, a0.normalized(), f->z}, a0.norm()};
+      // Both arcs between the vertices: each point of the circle a quarter and a half of
+      // the way round, either way.
+      const double turn = std::atan2(a0.cross(a1).dot(f->z), a0.dot(a1));
+      bool on = true;
+      for (double k : {0.25, 0.5, 0.75})
+        for (double way : {turn, turn > 0 ? turn - 2 * geo::kPi : turn + 2 * geo::kPi})
+          on = on && on_both(geo::evaluate(geo::Curve{c}, k * way));
+      if (on) out.push_back(c);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 const geo::Frame* seam_frame(const geo::Surface& s) {
@@ -287,6 +322,10 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   region.max.array() += margin;
   auto curves = geo::intersect(sf, sg, geo::IntersectOptions::for_model(tol, region));
   auto pick = geo::select_branch(curves, p0, p1);
+  if (!pick || pick->distance > tol.length) {
+    curves = common_iso_curves(sf, sg, p0, p1, tol);
+    pick = geo::select_branch(curves, p0, p1);
+  }
   if (!pick || pick->distance > tol.length) {
     *why = e.str() + ": the surfaces of " + f.str() + " and " + g.str() + " do not meet along it" +
            (pick ? " (nearest branch " + fmt(pick->distance) + " away)" : "");

@@ -106,6 +106,24 @@ using geo::SurfaceParams;
 using Kind = geo::SurfaceKind;
 
 
+// The signed offset of p from the half-plane of a periodic surface's seam (u = 0: through
+// the axis and the frame's x).
+double seam_offset(const geo::Surface& s, const geo::Vec3& p) {
+  const geo::Frame& f = *seam_frame(s);
+  return (p - f.origin).dot(f.z.cross(f.x).normalized());
+}
+
+// w·(offset of a variable point from a fixed seam's half-plane: through o, across m).
+struct OnFixedSeam {
+  geo::Vec3 o, m;
+  const double* w;
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    r[0] = T(*w) * ((x[0] - o[0]) * m[0] + (x[1] - o[1]) * m[1] + (x[2] - o[2]) * m[2]);
+    return true;
+  }
+};
+
 double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   double m = 0.0;
   for (const auto& q : pts) m = std::max(m, std::abs(geo::signed_distance(s, q)));
@@ -302,18 +320,44 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   std::vector<VertexH> vlist(verts.begin(), verts.end());
 
   // Every (vertex, face around it) pair is a hard constraint.
+  // Every (vertex, face around it) pair is a hard constraint; so is every vertex of a
+  // seam on its seam (`seam`): a vertex with only a torus and a plane round it (a
+  // fillet's end) is held on a circle of solutions, and slid along it while the seam's
+  // other end slid elsewhere, the seam was no longer one iso-line (filleted_post, scan
+  // parts 131000612: a vertex 5e-7 off its seam).
   struct Constraint {
     std::size_t vertex;
     FaceH face;
+    bool seam = false;
+    geo::Vec3 x_old = geo::Vec3::Zero();  // the seam face's frame x before the solve
   };
   std::vector<Constraint> constraints;
   for (std::size_t i = 0; i < vlist.size(); ++i)
     for (FaceH g : faces_around(b, vlist[i]))
       if (!std::holds_alternative<std::monostate>(b.surface(g))) constraints.push_back({i, g});
+  for (std::size_t i = 0; i < vlist.size(); ++i) {
+    std::set<FaceH> seen;
+    for (HalfedgeH h : b.outgoing(vlist[i])) {
+      const FaceH g = b.face(h);
+      if (!g.valid() || b.face(twin(h)) != g || seen.count(g)) continue;
+      const geo::Frame* frame = seam_frame(b.surface(g));
+      if (!frame) continue;
+      // Only a vertex off the axis that is on the seam's side within the tolerance: a
+      // seam the input put elsewhere than u = 0 keeps its curve (derive_edge_curve).
+      const geo::Vec3 r = b.point(vlist[i]) - frame->origin;
+      const geo::Vec3 across = r - r.dot(frame->z) * frame->z;
+      if (!(across.norm() > tol.precision) || across.dot(frame->x) <= 0 ||
+          !(std::abs(seam_offset(b.surface(g), b.point(vlist[i]))) <= tol.length))
+        continue;
+      seen.insert(g);
+      constraints.push_back({i, g, true, frame->x});
+    }
+  }
 
-  auto residual_now = [&](const Constraint& c) {
-    return std::abs(geo::signed_distance(b.surface(c.face), b.point(vlist[c.vertex])));
+  auto residual_of = [&](const Constraint& c, const geo::Surface& s, const geo::Vec3& p) {
+    return std::abs(c.seam ? seam_offset(s, p) : geo::signed_distance(s, p));
   };
+  auto residual_now = [&](const Constraint& c) { return residual_of(c, b.surface(c.face), b.point(vlist[c.vertex])); };
   double before = 0.0;
   for (const auto& c : constraints) before = std::max(before, residual_now(c));
   out.variable_faces = int(faces.size());
@@ -402,7 +446,18 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       if (k == skip) continue;
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
-      if (it != face_index.end()) {
+      if (c.seam) {
+        const geo::Frame& frame = *seam_frame(b.surface(c.face));
+        if (it != face_index.end()) {
+          ceres::CostFunction* f = geo::on_solved_seam(solved_params(it->second), c.x_old, frame.z, &hard, blocks);
+          blocks.push_back(points[c.vertex].data());
+          problem.AddResidualBlock(f, nullptr, blocks);
+        } else {
+          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OnFixedSeam, 1, 3>(
+                                       new OnFixedSeam{frame.origin, frame.z.cross(frame.x).normalized(), &hard}),
+                                   nullptr, points[c.vertex].data());
+        }
+      } else if (it != face_index.end()) {
         ceres::CostFunction* f = on_solved_surface(solved_params(it->second), true, geo::Vec3::Zero(), &hard, blocks);
         blocks.push_back(points[c.vertex].data());
         problem.AddResidualBlock(f, nullptr, blocks);
@@ -446,7 +501,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
       const geo::Surface& s = it != face_index.end() ? o.surfaces[it->second] : b.surface(c.face);
-      double r = std::abs(geo::signed_distance(s, o.points[c.vertex]));
+      double r = residual_of(c, s, o.points[c.vertex]);
       if (!std::isfinite(r)) r = HUGE_VAL;
       o.max_residual = std::max(o.max_residual, r);
       if (!(r <= tol.precision)) o.unmet.push_back({r, k});
@@ -461,7 +516,9 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       if (double d = (o.points[i] - b.point(vlist[i])).norm(); !(d <= tol.length)) o.vertices_too_far.push_back({d, i});
     return o;
   };
-  auto name = [&](std::size_t k) { return vlist[constraints[k].vertex].str() + " on " + constraints[k].face.str(); };
+  auto name = [&](std::size_t k) {
+    return vlist[constraints[k].vertex].str() + (constraints[k].seam ? " on the seam of " : " on ") + constraints[k].face.str();
+  };
 
   SolveInput input;
   input.length = tol.length, input.precision = tol.precision;
@@ -477,7 +534,8 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     h = fnv_mix(fnv_mix(fnv_mix(fnv_mix(h, double(v.idx())), b.point(v).x()), b.point(v).y()), b.point(v).z());
   }
   for (const Constraint& c : constraints) {
-    input.constraints.emplace_back(c.vertex, c.face.idx());
+    // A seam constraint is told apart by its top bit (face indices stay far below it).
+    input.constraints.emplace_back(c.vertex, c.face.idx() | (c.seam ? 0x80000000u : 0u));
     if (!face_index.count(c.face)) input.fixed.push_back(b.surface(c.face));
   }
   input.hash = h;

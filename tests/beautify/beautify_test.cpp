@@ -371,6 +371,27 @@ TEST(Beautify, PinchWhoseSolveTiltsPlanesNormalToZByAHairIsRepaired) {
   EXPECT_EQ(b.counts().faces, clean.faces + 5) << describe(r);
 }
 
+// A gap on the ruling between two halves of a cylinder (one surface, to be merged by
+// pass 8): the gap's new edge joins the two halves, whose surfaces coincide, so there is
+// no intersection to find; the edge is the ruling through the two junctions. Before, pass
+// 2 refused it ("do not meet along it") and pass 8 could not merge across the open gap
+// (CI, rapidcheck: InjectedDefectsOfTypes7To11AreRepaired).
+TEST(Beautify, GapBetweenTwoPiecesOfOneSurfaceClosesAlongTheirCommonRuling) {
+  const double t = 0.02;
+  Body b = random_solid(4);
+  const Counts clean = b.counts();
+  std::string err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::same_geometry_faces, 0, std::nullopt, t, &err)) << err;
+  ASSERT_TRUE(zoo::inject(b, ProblemType::edge_gap, 2469, std::nullopt, t, &err)) << err;
+  geo::Tolerances tol = tol_for(b, t);
+  ASSERT_EQ(detect(b, tol).count(ProblemType::edge_gap), 1);
+  BeautifyReport r = beautify(b, tol);
+  EXPECT_TRUE(r.left.empty()) << describe(r);
+  EXPECT_TRUE(check_topology(b).empty());
+  EXPECT_TRUE(check_geometry(b, tol.precision).violations.empty());
+  EXPECT_EQ(b.counts(), clean) << describe(r);
+}
+
 }  // namespace
 }  // namespace kintsugi
 
