@@ -115,7 +115,73 @@ struct OnSolvedSeam {
   }
 };
 
+struct OnTangentSurfaces {
+  SurfaceParams fixed[2];
+  bool solved[2];
+  int blocks[2];  // of each solved surface
+  double length;
+  const double* w;
+  template <typename T>
+  bool operator()(T const* const* q, T* r) const {
+    // Each surface's blocks: the solved ones from q, the fixed ones as constants.
+    T consts[2][8];
+    T const* fixed_blocks[2][3];
+    T const* const* at[2];
+    int next = 0;
+    T n[2][3];
+    const T* x = q[(solved[0] ? blocks[0] : 0) + (solved[1] ? blocks[1] : 0)];
+    for (int s = 0; s < 2; ++s) {
+      if (solved[s]) {
+        at[s] = q + next;
+        next += blocks[s];
+      } else {
+        // The fixed parameters as constants, in the blocks' layout (SurfaceParams::blocks):
+        // a (0-5) then s (6-7); a torus's a is two blocks, centre and axis.
+        for (int i = 0; i < 6; ++i) consts[s][i] = T(fixed[s].a[i]);
+        for (int i = 0; i < 2; ++i) consts[s][6 + i] = T(fixed[s].s[i]);
+        fixed_blocks[s][0] = consts[s];
+        if (fixed[s].kind == SurfaceKind::torus) {
+          fixed_blocks[s][1] = consts[s] + 3, fixed_blocks[s][2] = consts[s] + 6;
+        } else {
+          fixed_blocks[s][1] = consts[s] + 6, fixed_blocks[s][2] = nullptr;
+        }
+        at[s] = fixed_blocks[s];
+      }
+      surface_gradient(fixed[s].kind, at[s], x, n[s]);
+      using std::sqrt;
+      const T len = sqrt(n[s][0] * n[s][0] + n[s][1] * n[s][1] + n[s][2] * n[s][2] + 1e-300);
+      for (int i = 0; i < 3; ++i) n[s][i] /= len;
+    }
+    const T k = T(*w * length);
+    r[0] = k * (n[0][1] * n[1][2] - n[0][2] * n[1][1]);
+    r[1] = k * (n[0][2] * n[1][0] - n[0][0] * n[1][2]);
+    r[2] = k * (n[0][0] * n[1][1] - n[0][1] * n[1][0]);
+    return true;
+  }
+};
+
 }  // namespace
+
+ceres::CostFunction* on_tangent_surfaces(SurfaceParams* f, const SurfaceParams& fixed_f, SurfaceParams* g,
+                                         const SurfaceParams& fixed_g, double length, const double* w,
+                                         std::vector<double*>& blocks) {
+  auto* functor = new OnTangentSurfaces{{f ? *f : fixed_f, g ? *g : fixed_g}, {f != nullptr, g != nullptr}, {0, 0}, length, w};
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<OnTangentSurfaces, 4>(functor);
+  blocks.clear();
+  SurfaceParams* solved[2] = {f, g};
+  for (int s = 0; s < 2; ++s) {
+    if (!solved[s]) continue;
+    auto bl = solved[s]->blocks();
+    functor->blocks[s] = int(bl.size());
+    for (auto [ptr, size] : bl) {
+      cost->AddParameterBlock(size);
+      blocks.push_back(ptr);
+    }
+  }
+  cost->AddParameterBlock(3);
+  cost->SetNumResiduals(3);
+  return cost;
+}
 
 ceres::CostFunction* on_solved_seam(SurfaceParams& p, const Vec3& x_old, const Vec3& fixed_axis, const double* w,
                                     std::vector<double*>& blocks) {

@@ -90,6 +90,62 @@ T surface_distance(SurfaceKind kind, T const* const* q, const T* x) {
   return T(0);
 }
 
+// The surface's gradient at x (a normal, not of unit length; either sense), in a form
+// Ceres can differentiate: a plane's normal, the direction across the axis for a cylinder,
+// from the centre for a sphere, from the tube's centre circle for a torus; for a cone, of
+// the nappe nearer x (as surface_distance).
+template <typename T>
+void surface_gradient(SurfaceKind kind, T const* const* q, const T* x, T* n) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  auto across = [&](const T* o, const T* d, T* w, T& h) {
+    T v[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+    h = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+    for (int i = 0; i < 3; ++i) w[i] = v[i] - h * d[i];
+    return sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2] + 1e-300);
+  };
+  T w[3], h;
+  switch (kind) {
+    case SurfaceKind::plane:
+      for (int i = 0; i < 3; ++i) n[i] = q[0][i];
+      return;
+    case SurfaceKind::cylinder: {
+      const T rho = across(q[0], q[0] + 3, w, h);
+      for (int i = 0; i < 3; ++i) n[i] = w[i] / rho;
+      return;
+    }
+    case SurfaceKind::cone: {
+      // Of the nearer nappe, as surface_distance chooses it.
+      const T rho = across(q[0], q[0] + 3, w, h);
+      const T near_side = (rho - q[1][0]) * cos(q[1][1]) - h * sin(q[1][1]);
+      const T far_side = (rho + q[1][0]) * cos(q[1][1]) + h * sin(q[1][1]);
+      using std::abs;
+      const T sense = abs(far_side) < abs(near_side) ? T(1) : T(-1);
+      for (int i = 0; i < 3; ++i) n[i] = cos(q[1][1]) * w[i] / rho + sense * sin(q[1][1]) * q[0][3 + i];
+      return;
+    }
+    case SurfaceKind::sphere:
+      for (int i = 0; i < 3; ++i) n[i] = x[i] - q[0][i];
+      return;
+    case SurfaceKind::torus: {
+      const T rho = across(q[0], q[1], w, h);
+      for (int i = 0; i < 3; ++i) n[i] = w[i] * (T(1) - q[2][0] / rho) + h * q[1][i];
+      return;
+    }
+  }
+}
+
+// Residuals w·L·(n_f × n_g) (3) at a variable point (the last block) where two surfaces
+// are to stay tangent (unit normals parallel either way): a fillet and the faces it
+// rounds off, so that a solve moving one moves the other with it. Each surface is solved
+// (`f` or `g` non-null: its blocks come first, f's before g's) or fixed (`fixed_f`,
+// `fixed_g`: its parameters, constants of the residual). L turns the angle into a length
+// (the edge's extent). `blocks` receives the block pointers.
+ceres::CostFunction* on_tangent_surfaces(SurfaceParams* f, const SurfaceParams& fixed_f, SurfaceParams* g,
+                                         const SurfaceParams& fixed_g, double length, const double* w,
+                                         std::vector<double*>& blocks);
+
 // Residual w·d of a point on a solved surface: a variable point (then its 3 coordinates
 // are the last parameter block) or a fixed one. `w` is read at each evaluation, so a
 // caller can raise the weight between solves. Blocks: `p.blocks()` in order, then the

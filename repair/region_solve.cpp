@@ -319,22 +319,36 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   for (std::size_t i = 0; i < faces.size(); ++i) tie[i] = root(i);
   std::vector<VertexH> vlist(verts.begin(), verts.end());
 
-  // Every (vertex, face around it) pair is a hard constraint.
   // Every (vertex, face around it) pair is a hard constraint; so is every vertex of a
   // seam on its seam (`seam`): a vertex with only a torus and a plane round it (a
   // fillet's end) is held on a circle of solutions, and slid along it while the seam's
   // other end slid elsewhere, the seam was no longer one iso-line (filleted_post, scan
   // parts 131000612: a vertex 5e-7 off its seam).
+  // And two faces tangent along an edge stay tangent there (`tangent`, at two points of
+  // the edge that are variables of the solve besides the vertices): a fillet's torus and
+  // the plane it meets meet in a circle only while the plane is square to the torus's
+  // axis at the tube's height, and a solve that tilted the plane by 2e-8 rad left their
+  // edge 5.7e-7 off the torus (the same part, one repair later).
+  enum class CKind { on_surface, on_seam, tangent };
   struct Constraint {
-    std::size_t vertex;
+    std::size_t vertex;  // a vertex (< vlist.size()) or a point of a tangent edge
     FaceH face;
-    bool seam = false;
-    geo::Vec3 x_old = geo::Vec3::Zero();  // the seam face's frame x before the solve
+    CKind kind = CKind::on_surface;
+    geo::Vec3 x_old = geo::Vec3::Zero();  // on_seam: the seam face's frame x before the solve
+    FaceH other;                          // tangent: the second face
+    double length = 0.0;                  // tangent: the edge's extent (angle to length)
   };
+  auto constraint = [](std::size_t vertex, FaceH face, CKind kind = CKind::on_surface) {
+    Constraint c;
+    c.vertex = vertex, c.face = face, c.kind = kind;
+    return c;
+  };
+  std::vector<geo::Vec3> start;  // the points' positions before the solve
+  for (VertexH v : vlist) start.push_back(b.point(v));
   std::vector<Constraint> constraints;
   for (std::size_t i = 0; i < vlist.size(); ++i)
     for (FaceH g : faces_around(b, vlist[i]))
-      if (!std::holds_alternative<std::monostate>(b.surface(g))) constraints.push_back({i, g});
+      if (!std::holds_alternative<std::monostate>(b.surface(g))) constraints.push_back(constraint(i, g));
   for (std::size_t i = 0; i < vlist.size(); ++i) {
     std::set<FaceH> seen;
     for (HalfedgeH h : b.outgoing(vlist[i])) {
@@ -350,14 +364,69 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
           !(std::abs(seam_offset(b.surface(g), b.point(vlist[i]))) <= tol.length))
         continue;
       seen.insert(g);
-      constraints.push_back({i, g, true, frame->x});
+      constraints.push_back(constraint(i, g, CKind::on_seam));
+      constraints.back().x_old = frame->x;
+    }
+  }
+  {
+    std::map<VertexH, std::size_t> vertex_index;
+    for (std::size_t i = 0; i < vlist.size(); ++i) vertex_index[vlist[i]] = i;
+    std::set<EdgeH> edges;
+    for (FaceH f : region)
+      for (LoopH l : b.loops_of(f))
+        for (HalfedgeH h : b.loop_halfedges(l)) edges.insert(edge_of(h));
+    for (EdgeH e : edges) {
+      const HalfedgeH h = halfedge_of(e, 0);
+      const FaceH f = b.face(h), g = b.face(twin(h));
+      if (!f.valid() || !g.valid() || f == g || (!face_index.count(f) && !face_index.count(g))) continue;
+      if (!params_of(b.surface(f)) || !params_of(b.surface(g))) continue;
+      const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
+      if (along.size() < 3) continue;
+      double extent = 0;
+      for (const geo::Vec3& q : along) extent = std::max(extent, (q - along.front()).norm());
+      std::vector<geo::Vec3> at;
+      for (std::size_t k : {along.size() / 3, (2 * along.size()) / 3})
+        if (k > 0 && k + 1 < along.size()) at.push_back(along[k]);
+      bool tangent = at.size() == 2;
+      for (const geo::Vec3& q : at) {
+        const geo::Vec3 nf = geo::closest_point(b.surface(f), q).normal, ng = geo::closest_point(b.surface(g), q).normal;
+        tangent = tangent && nf.cross(ng).norm() * std::max(extent, tol.length) <= tol.precision;
+      }
+      if (!tangent) continue;
+      // Its vertices too: near a tangent contact a point is within the precision of both
+      // surfaces across a band sqrt(2·r·precision) wide (7e-4 beside a fillet of radius
+      // 4), so a vertex on both may still lie off their contact curve.
+      for (VertexH w : {b.origin(h), b.target(h)}) {
+        auto at_w = vertex_index.find(w);
+        if (at_w == vertex_index.end()) continue;
+        constraints.push_back(constraint(at_w->second, f, CKind::tangent));
+        constraints.back().other = g, constraints.back().length = std::max(extent, tol.length);
+        if (b.origin(h) == b.target(h)) break;
+      }
+      for (const geo::Vec3& q : at) {
+        const std::size_t i = start.size();
+        start.push_back(q);
+        constraints.push_back(constraint(i, f));
+        constraints.push_back(constraint(i, g));
+        constraints.push_back(constraint(i, f, CKind::tangent));
+        constraints.back().other = g, constraints.back().length = std::max(extent, tol.length);
+      }
     }
   }
 
-  auto residual_of = [&](const Constraint& c, const geo::Surface& s, const geo::Vec3& p) {
-    return std::abs(c.seam ? seam_offset(s, p) : geo::signed_distance(s, p));
+  // A constraint's residual, a length: the surface of c.face is `s` (and of c.other `s2`).
+  auto residual_of = [&](const Constraint& c, const geo::Surface& s, const geo::Surface* s2, const geo::Vec3& p) {
+    switch (c.kind) {
+      case CKind::on_seam: return std::abs(seam_offset(s, p));
+      case CKind::tangent:
+        return c.length * geo::closest_point(s, p).normal.cross(geo::closest_point(*s2, p).normal).norm();
+      case CKind::on_surface: break;
+    }
+    return std::abs(geo::signed_distance(s, p));
   };
-  auto residual_now = [&](const Constraint& c) { return residual_of(c, b.surface(c.face), b.point(vlist[c.vertex])); };
+  auto residual_now = [&](const Constraint& c) {
+    return residual_of(c, b.surface(c.face), c.other.valid() ? &b.surface(c.other) : nullptr, start[c.vertex]);
+  };
   double before = 0.0;
   for (const auto& c : constraints) before = std::max(before, residual_now(c));
   out.variable_faces = int(faces.size());
@@ -420,9 +489,9 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     for (std::size_t i = 0; i < faces.size(); ++i) params[i] = *params_of(from ? from->surfaces[i] : b.surface(faces[i]));
     // A tied face is solved through its representative's parameters (params[tie[i]]).
     auto solved_params = [&](std::size_t i) -> SurfaceParams& { return params[tie[i]]; };
-    std::vector<std::array<double, 3>> points(vlist.size());
-    for (std::size_t i = 0; i < vlist.size(); ++i)
-      for (int k = 0; k < 3; ++k) points[i][std::size_t(k)] = from ? from->points[i][k] : b.point(vlist[i])[k];
+    std::vector<std::array<double, 3>> points(start.size());
+    for (std::size_t i = 0; i < start.size(); ++i)
+      for (int k = 0; k < 3; ++k) points[i][std::size_t(k)] = from ? from->points[i][k] : start[i][k];
     ceres::Problem problem;
     for (std::size_t i = 0; i < faces.size(); ++i) {
       if (tie[i] != i) continue;
@@ -439,14 +508,22 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         ceres::CostFunction* f = on_solved_surface(solved_params(i), false, s, &w_face[i], blocks);
         problem.AddResidualBlock(f, new ceres::HuberLoss(1.0), blocks);
       }
-    for (std::size_t i = 0; i < vlist.size(); ++i)
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{b.point(vlist[i]), w_prior}),
+    for (std::size_t i = 0; i < start.size(); ++i)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{start[i], w_prior}),
                                nullptr, points[i].data());
     for (std::size_t k = 0; k < constraints.size(); ++k) {
       if (k == skip) continue;
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
-      if (c.seam) {
+      if (c.kind == CKind::tangent) {
+        auto jt = face_index.find(c.other);
+        const SurfaceParams fixed_f = *params_of(b.surface(c.face)), fixed_g = *params_of(b.surface(c.other));
+        ceres::CostFunction* f = geo::on_tangent_surfaces(
+            it != face_index.end() ? &solved_params(it->second) : nullptr, fixed_f,
+            jt != face_index.end() ? &solved_params(jt->second) : nullptr, fixed_g, c.length, &hard, blocks);
+        blocks.push_back(points[c.vertex].data());
+        problem.AddResidualBlock(f, nullptr, blocks);
+      } else if (c.kind == CKind::on_seam) {
         const geo::Frame& frame = *seam_frame(b.surface(c.face));
         if (it != face_index.end()) {
           ceres::CostFunction* f = geo::on_solved_seam(solved_params(it->second), c.x_old, frame.z, &hard, blocks);
@@ -501,7 +578,12 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const Constraint& c = constraints[k];
       auto it = face_index.find(c.face);
       const geo::Surface& s = it != face_index.end() ? o.surfaces[it->second] : b.surface(c.face);
-      double r = residual_of(c, s, o.points[c.vertex]);
+      const geo::Surface* s2 = nullptr;
+      if (c.other.valid()) {
+        auto jt = face_index.find(c.other);
+        s2 = jt != face_index.end() ? &o.surfaces[jt->second] : &b.surface(c.other);
+      }
+      double r = residual_of(c, s, s2, o.points[c.vertex]);
       if (!std::isfinite(r)) r = HUGE_VAL;
       o.max_residual = std::max(o.max_residual, r);
       if (!(r <= tol.precision)) o.unmet.push_back({r, k});
@@ -517,7 +599,14 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     return o;
   };
   auto name = [&](std::size_t k) {
-    return vlist[constraints[k].vertex].str() + (constraints[k].seam ? " on the seam of " : " on ") + constraints[k].face.str();
+    const Constraint& c = constraints[k];
+    const std::string at = c.vertex < vlist.size() ? vlist[c.vertex].str() : "a point of an edge";
+    switch (c.kind) {
+      case CKind::on_seam: return at + " on the seam of " + c.face.str();
+      case CKind::tangent: return c.face.str() + " tangent to " + c.other.str() + " at " + at;
+      case CKind::on_surface: break;
+    }
+    return at + " on " + c.face.str();
   };
 
   SolveInput input;
@@ -533,10 +622,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     input.vertices.push_back(v.idx()), input.points.push_back(b.point(v));
     h = fnv_mix(fnv_mix(fnv_mix(fnv_mix(h, double(v.idx())), b.point(v).x()), b.point(v).y()), b.point(v).z());
   }
+  for (std::size_t i = vlist.size(); i < start.size(); ++i) input.points.push_back(start[i]);  // tangent edges' points
   for (const Constraint& c : constraints) {
-    // A seam constraint is told apart by its top bit (face indices stay far below it).
-    input.constraints.emplace_back(c.vertex, c.face.idx() | (c.seam ? 0x80000000u : 0u));
+    // A seam or tangency constraint is told apart by its top bits (face indices stay far
+    // below them), a tangency's second face by a constraint of its own.
+    input.constraints.emplace_back(c.vertex, c.face.idx() | (c.kind == CKind::on_seam ? 0x80000000u : 0u) |
+                                                 (c.kind == CKind::tangent ? 0x40000000u : 0u));
+    if (c.kind == CKind::tangent) input.constraints.emplace_back(c.vertex, c.other.idx() | 0x40000000u);
     if (!face_index.count(c.face)) input.fixed.push_back(b.surface(c.face));
+    if (c.other.valid() && !face_index.count(c.other)) input.fixed.push_back(b.surface(c.other));
   }
   input.hash = h;
   if (const RegionSolve* seen = g_failed_solves.find(input)) return *seen;

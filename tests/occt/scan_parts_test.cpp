@@ -414,6 +414,14 @@ TEST(ScanParts, ARimWithinThePrecisionIsValidForOpenCascadeToo) { expect_case_pa
 // "underdetermined"; the gap was filled with a new face, inside out, and refused.
 TEST(ScanParts, GapWhereAFilletEndsClosesInOneVertex) { expect_case_passes(67, 86); }
 
+// A post's fillet (a torus) meets the top plane along a circle where they are tangent,
+// and a pinch beside it zips a boss's side to that plane. Solved freely, the plane tilted
+// by about 2e-8 rad with the boss's side tied to it: their circle left the torus by
+// 5.7e-7 (precision 6.4e-8), and the seam vertex on it slid off its seam. The region
+// solve now holds a seam's vertices on the seam and tangent faces tangent along their
+// edge, and the plane stays where the fillet holds it.
+TEST(ScanParts, APlaneTangentToAFilletStaysTangentThroughARepair) { expect_case_passes(131, 219); }
+
 // Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
 // (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
 // judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
