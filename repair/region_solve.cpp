@@ -380,6 +380,9 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const FaceH f = b.face(h), g = b.face(twin(h));
       if (!f.valid() || !g.valid() || f == g || (!face_index.count(f) && !face_index.count(g))) continue;
       if (!params_of(b.surface(f)) || !params_of(b.surface(g))) continue;
+      // Two planes along an edge are tangent only where they are one plane: the ties
+      // above hold those together.
+      if (std::holds_alternative<geo::Plane>(b.surface(f)) && std::holds_alternative<geo::Plane>(b.surface(g))) continue;
       const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
       if (along.size() < 3) continue;
       double extent = 0;
