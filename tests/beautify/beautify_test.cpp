@@ -21,6 +21,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <fstream>
 
 namespace kintsugi {
@@ -152,12 +153,22 @@ Body defective(double t, std::string* what, std::optional<ProblemType> first = s
   Body b = random_solid(*rc::gen::inRange(0, 6));
   const int n = *rc::gen::inRange(1, 4);
   int made = 0;
+  // Defects of one type stacked at one element add up: a base fitted three times, two
+  // pieces tilted by 0.0105 and 0.0115 at t = 0.02, is one face 0.022 out of plane, and
+  // its merge rightly refuses to move vertices 0.033. The property covers stacks whose
+  // sizes add up to less than the tolerance.
+  std::map<std::pair<ProblemType, std::string>, double> stacked;
   for (int i = 0; i < n; ++i) {
     ProblemType type = i == 0 && first ? *first : *rc::gen::elementOf(kImplemented);
     std::string err;
     auto inj = zoo::inject(b, type, *rc::gen::arbitrary<std::uint32_t>(), std::nullopt, t, &err);
     if (inj) {
       ++made;
+      if (!inj->defect.elements.empty()) {
+        double& sum = stacked[{type, inj->defect.elements.front()}];
+        sum += inj->defect.size;
+        RC_PRE(sum < t);
+      }
       *what += std::string(problem_name(type)) + ": " + inj->description + "\n";
     } else if (i == 0 && first) {
       RC_DISCARD("no place for the pass's own type");
