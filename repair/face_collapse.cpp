@@ -1,6 +1,7 @@
 #include "repair/face_collapse.h"
 
 #include "kernel/euler.h"
+#include "repair/beautify_detail.h"
 
 #include <algorithm>
 #include <map>
@@ -162,6 +163,97 @@ std::string collapse_onto_tree(Body& b, FaceH f, const std::vector<std::pair<Ver
       return e.str() + " would have " + b.face(halfedge_of(e, 0)).str() + " on both sides";
   }
   return "";
+}
+
+std::string collapse_to_vertex(Body& b, FaceH f, const geo::Tolerances& tol, Touched& touched) {
+  auto hs = b.loop_halfedges(b.outer_loop(f));
+  geo::Vec3 centroid = geo::Vec3::Zero();
+  std::map<FaceH, int> shared;
+  for (HalfedgeH h : hs) {
+    centroid += b.point(b.origin(h));
+    FaceH g = b.face(twin(h));
+    if (!g.valid()) return f.str() + " borders a gap";
+    if (g == f) return f.str() + " meets itself along " + edge_of(h).str();
+    shared[g]++;
+  }
+  centroid /= double(hs.size());
+  for (auto [g, n] : shared)
+    if (b.loop_halfedges(b.outer_loop(g)).size() < std::size_t(n) + 2 + 1 && b.rings_of(g).empty())
+      return "neighbour " + g.str() + " would be left with fewer than three sides";
+  // kev until two edges are left.
+  while (b.loop_halfedges(b.outer_loop(f)).size() > 2) {
+    HalfedgeH h = b.first(b.outer_loop(f));
+    if (b.degree(b.origin(h)) == 1) h = twin(h);  // kev keeps origin(h): keep the one with edges
+    auto r = euler::kev(b, h);
+    if (!r) return std::string("kev refused: ") + r.error().message;
+  }
+  auto two = b.loop_halfedges(b.outer_loop(f));
+  if (two.size() != 2) return f.str() + " did not reduce to two edges";
+  // Kill f across its first edge; the second edge then separates two neighbours.
+  auto k = euler::kef(b, twin(two[0]));
+  if (!k) return std::string("kef refused: ") + k.error().message;
+  HalfedgeH last = two[1];
+  if (b.degree(b.origin(last)) == 1) last = twin(last);
+  VertexH keep = b.origin(last);
+  auto r = euler::kev(b, last);
+  if (!r) return std::string("kev refused: ") + r.error().message;
+  for (FaceH g : faces_around(b, keep)) touched.faces.insert(g);
+  return place_vertices(b, {{keep, centroid}}, tol, tol.max_vertex_move(), touched);
+}
+
+FaceH join_patch(Body& b, const std::vector<FaceH>& faces, std::string* why) {
+  const FaceH u = faces.front();
+  const std::set<FaceH> members(faces.begin(), faces.end());
+  for (FaceH f : faces)
+    if (!b.rings_of(f).empty()) {
+      *why = f.str() + " has inner loops";
+      return FaceH();
+    }
+  for (bool again = true; again;) {
+    again = false;
+    for (HalfedgeH h : b.loop_halfedges(b.outer_loop(u))) {
+      const FaceH g = b.face(twin(h));
+      if (g == u) {
+        // A strut inside the joined face: the edges round its inner end were killed.
+        HalfedgeH in = b.degree(b.target(h)) == 1 ? h : b.degree(b.origin(h)) == 1 ? twin(h) : HalfedgeH();
+        if (!in.valid()) continue;
+        auto r = euler::kev(b, in);  // the end on no other edge goes
+        if (!r) {
+          *why = "kev refused on " + edge_of(h).str() + ": " + r.error().message;
+          return FaceH();
+        }
+        again = true;
+        break;
+      }
+      if (!members.count(g)) continue;
+      auto k = euler::kef(b, h);  // g is killed, its loop joins U's
+      if (!k) {
+        *why = "kef refused across " + edge_of(h).str() + ": " + k.error().message;
+        return FaceH();
+      }
+      again = true;
+      break;
+    }
+  }
+  for (FaceH f : faces)
+    if (f != u && b.alive(f)) {
+      *why = "the small faces did not join into one";
+      return FaceH();
+    }
+  for (HalfedgeH h : b.loop_halfedges(b.outer_loop(u)))
+    if (b.face(twin(h)) == u) {
+      *why = "the patch of small faces encloses " + edge_of(h).str() + ": not a disc";
+      return FaceH();
+    }
+  if (!b.rings_of(u).empty()) {
+    *why = "the patch of small faces encloses a hole: not a disc";
+    return FaceH();
+  }
+  if (std::string w = drop_bare_vertices(b, u); !w.empty()) {
+    *why = w;
+    return FaceH();
+  }
+  return u;
 }
 
 }  // namespace kintsugi::detail

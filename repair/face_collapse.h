@@ -7,6 +7,7 @@
 
 #include "geometry/tolerance.h"
 #include "kernel/body.h"
+#include "repair/touched.h"
 
 #include <string>
 #include <utility>
@@ -34,7 +35,22 @@ std::string drop_bare_vertices(Body& b, FaceH f);
 std::string collapse_onto_tree(Body& b, FaceH f, const std::vector<std::pair<VertexH, VertexH>>& tree,
                                VertexH* junction = nullptr, const geo::Vec3& junction_at = geo::Vec3::Zero());
 
-// Whether the chords of `path` (consecutive pairs not adjacent on the loop) cross, for
+// Replaces face f (an outer loop only, every neighbour across it a face) by one vertex
+// where the faces around it meet (pass 9, paper 4.6). Topology: kev along f's loop until
+// it has two edges, kef to kill f across one of them, kev of the last; the vertex goes to
+// the neighbours' meeting point (place_vertices, from the centroid of f's vertices) and
+// the edges at it get curves through it. Refused when a neighbour would be left with
+// fewer than three sides. Returns "" or why not.
+std::string collapse_to_vertex(Body& b, FaceH f, const geo::Tolerances& tol, Touched& touched);
+
+// Joins a patch of small faces whose adjacency has a cycle (three small triangles round a
+// cut corner) into one face: kef across the edges between them, kev of the struts this
+// leaves inside it, jekv of vertices on no other edge. Refused when the patch is not a
+// disc (it encloses something, or its faces meet along more than one stretch). Returns
+// the face, or sets *why.
+FaceH join_patch(Body& b, const std::vector<FaceH>& faces, std::string* why);
+
+// Whether the chords of `path`// Whether the chords of `path` (consecutive pairs not adjacent on the loop) cross, for
 // vertices in loop order `loop`: a path whose chords cross has no plane embedding in f.
 bool chords_cross(const std::vector<VertexH>& loop, const std::vector<std::pair<VertexH, VertexH>>& tree);
 

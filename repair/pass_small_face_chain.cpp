@@ -16,9 +16,10 @@
 //      only vertex of its own, a chord x1–x2 (mef), kev of the chord, and kef of the
 //      two-sided piece left between m and the merged vertex, into the face beyond;
 //   5. the last two-sided face is killed (kef) into one of its neighbours.
-// Refused with the reason: closed rings of small faces, faces meeting along more than one
-// edge, adjacency with a cycle (a patch of small faces, which the tolerance alone cannot
-// decide how to collapse), a loop whose labels do not come apart at a tip.
+// A patch (adjacency with a cycle: small triangles round a cut corner) is joined into one
+// face and collapsed into one vertex where the faces around it meet, as pass 9 does.
+// Refused with the reason: closed rings of small faces (a patch that is not a disc),
+// faces meeting along more than one edge, a loop whose labels do not come apart at a tip.
 // Geometry: each new vertex goes to where its faces meet, starting from the centroid of
 // its face's vertices (place_vertices, at most twice the tolerance away); consecutive
 // vertices that would meet in one point are one vertex (kev), as at a corner. A new
@@ -67,7 +68,8 @@ std::vector<int> tree_path(const Network& n, int from, int to) {
   return path;
 }
 
-std::string read_network(const Body& b, const std::vector<FaceH>& faces, Network& n) {
+std::string read_network(const Body& b, const std::vector<FaceH>& faces, Network& n, bool* cycle) {
+  *cycle = false;
   n.faces = faces;
   std::map<FaceH, int> index;
   for (std::size_t i = 0; i < faces.size(); ++i) index[faces[i]] = int(i);
@@ -93,9 +95,10 @@ std::string read_network(const Body& b, const std::vector<FaceH>& faces, Network
   }
   links /= 2;
   if (links + 1 != faces.size()) {
-    if (links + 1 > faces.size())
-      return "the small faces enclose a cycle (a patch of small faces, or a closed ring): which edges they stand "
-             "for is not decided by the tolerance";
+    if (links + 1 > faces.size()) {
+      *cycle = true;
+      return "the small faces' adjacency has a cycle";
+    }
     return "the small faces are not connected";
   }
   if (tree_path(n, 0, int(faces.size()) - 1).empty()) return "the small faces are not connected";
@@ -164,7 +167,20 @@ std::string repair_small_face_chain(RepairContext& c) {
   for (FaceH f : faces)
     if (!(face_area(b, f, c.tol) < c.tol.length * c.tol.length)) return f.str() + " is no longer small";
   Network n;
-  if (auto why = read_network(b, faces, n); !why.empty()) return why;
+  bool cycle = false;
+  if (auto why = read_network(b, faces, n, &cycle); !why.empty()) {
+    if (!cycle) return why;
+    // A patch (three small triangles round a cut corner, each beside the other two): no
+    // order to zip its faces in, and no edge of it stands for anything the tolerance can
+    // see. It is one small region: joined into one face, it becomes one vertex where the
+    // faces around it meet, as a small face does (pass 9 could not take it: its faces
+    // are a chain's). A ring round something, or a patch whose neighbours do not meet in
+    // one point near it, is refused.
+    std::string not_joined;
+    const FaceH u = join_patch(b, faces, &not_joined);
+    if (!u.valid()) return "a patch of small faces (their adjacency has a cycle) that cannot be one face: " + not_joined;
+    return collapse_to_vertex(b, u, c.tol, c.touched);
+  }
   std::map<VertexH, std::vector<int>> on;
   for (std::size_t i = 0; i < faces.size(); ++i)
     for (VertexH v : b.loop_vertices(b.outer_loop(faces[i]))) on[v].push_back(int(i));
