@@ -398,10 +398,9 @@ geo::Frame frame_of(const geo::Surface& s) {
 // A vertex of a cylinder's seam slid along its cap's circle (0.1 tol) is on every
 // surface of its faces, so only its seam tells it is misplaced: the solve brings it back
 // to the seam's half-plane, and the seam (a ruling of the cylinder) stays on the
-// cylinder. Without the
-// seam as a constraint the region looked consistent and the vertex stayed off its seam
-// (a fillet's torus in the scan parts, 5e-7 off at precision 6e-8). A cone's seam, from
-// the apex: the solve may as well turn the cone a little about the apex.
+// cylinder. Without the seam as a constraint the region looked consistent and the vertex
+// stayed off its seam (a fillet's torus in the scan parts, 5e-7 off at precision 6e-8).
+// A cone's seam, from the apex: the solve may as well turn the cone a little about it.
 TEST(BeautifySolve, AVertexSlidOffItsSeamReturnsToIt) {
   struct Case {
     const char* name;
