@@ -309,6 +309,22 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
           both.insert(both.end(), og.samples.begin(), og.samples.end());
           geo::SurfaceFit fit = geo::fit_surface_like(oi.surface, both);
           one_plane = fit.problem.empty() && fit.max_deviation <= tol.length;
+          // Weighed by area (below), the tied plane is about the larger face's own: the
+          // smaller face's samples must lie within the tolerance of that, not only of the
+          // equal-weight fit (a boss side 30° off a pyramid's small side fitted both
+          // within 0.02, then moved 0.023 in the solve; Beautify.InjectedDefects...,
+          // rapidcheck seed 1).
+          if (one_plane && weigh_zipped_by_area) {
+            double ai = 0, ag = 0;
+            try {
+              ai = face_area(b, faces[i], tol), ag = face_area(b, g, tol);
+            } catch (const std::exception&) {
+            }
+            const bool i_larger = ai >= ag;
+            const OriginalFace& larger = i_larger ? oi : og;
+            const OriginalFace& smaller = i_larger ? og : oi;
+            one_plane = max_distance(larger.surface, smaller.samples) <= tol.length;
+          }
         }
         if (one_plane) {
           if (was_apart) zipped.push_back(i);
