@@ -336,7 +336,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   std::vector<VertexH> vlist(verts.begin(), verts.end());
 
   // Every (vertex, face around it) pair is a hard constraint; so is every vertex of a
-  // seam on its seam (`seam`): a vertex with only a torus and a plane round it (a
+  // seam on its seam (`on_seam`): a vertex with only a torus and a plane round it (a
   // fillet's end) is held on a circle of solutions, and slid along it while the seam's
   // other end slid elsewhere, the seam was no longer one iso-line (filleted_post, scan
   // parts 131000612: a vertex 5e-7 off its seam).
