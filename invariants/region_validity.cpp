@@ -86,7 +86,13 @@ struct Seg {
   std::uint32_t loop;  // index among the face's loops
   std::uint32_t edge;  // EdgeH index: the two sides of a seam are never compared
   std::uint32_t pos;   // position along the loop, for adjacency
+  // The segment is its edge's image in the domain, not a chord of a curve there (the
+  // edge's points lie on one segment: a line on a plane, a ruling or a parallel circle on
+  // a cylinder): touching is decided on it to the precision.
+  bool exact = false;
+  std::uint32_t loop_points = 0;  // segments in the loop, for telling consecutive ones
 };
+
 
 double cross2(const geo::Vec2& a, const geo::Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -96,6 +102,30 @@ double segment_distance(const geo::Vec2& p, const geo::Vec2& a, const geo::Vec2&
   const double l2 = d.squaredNorm();
   const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
   return (p - (a + t * d)).norm();
+}
+
+// Two segments of different edges that touch without crossing: an end of one on the
+// other away from the other's ends (a T, or one running back along the other: a face
+// folded onto itself along a line), or the two lying on each other end to end. A loop
+// meets another edge, or itself, only at its vertices; OpenCASCADE's checker calls such
+// a wire self-intersecting where the loop comes back onto an edge of another face (the
+// Table 1 audit's folded side), though not always. Ends shared (a vertex, or two at one
+// point) are not a touch.
+bool touches(const Seg& x, const Seg& y, double eps) {
+  auto inside = [eps](const geo::Vec2& p, const Seg& s) {
+    return (p - s.a).norm() > eps && (p - s.b).norm() > eps && segment_distance(p, s.a, s.b) <= eps;
+  };
+  if (inside(y.a, x) || inside(y.b, x) || inside(x.a, y) || inside(x.b, y)) return true;
+  const bool same_ends = ((x.a - y.a).norm() <= eps && (x.b - y.b).norm() <= eps) ||
+                         ((x.a - y.b).norm() <= eps && (x.b - y.a).norm() <= eps);
+  return same_ends && (x.b - x.a).norm() > eps;
+}
+
+// Consecutive segments of one loop (the last and the first too).
+bool consecutive(const Seg& x, const Seg& y) {
+  if (x.loop != y.loop) return false;
+  const std::uint32_t n = x.loop_points;
+  return (x.pos + 1) % n == y.pos || (y.pos + 1) % n == x.pos;
 }
 
 // Proper crossing of two segments: each one's ends strictly on both sides of the other,
@@ -109,6 +139,7 @@ bool crosses(const geo::Vec2& p, const geo::Vec2& q, const geo::Vec2& r, const g
   const double o3 = cross2(d2, p - r) / l2, o4 = cross2(d2, q - r) / l2;
   return ((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps));
 }
+
 
 // Points where the surface's parametrisation is singular (sphere poles, cone apex): the
 // angle there is arbitrary, so segments ending there are left out.
@@ -129,7 +160,8 @@ struct FaceLoops {
   std::vector<LoopH> winding;
 };
 
-FaceLoops map_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, double chordal, double near_singular) {
+FaceLoops map_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, double chordal, double near_singular,
+                    double eps) {
   FaceLoops out;
   const geo::Surface& s = b.surface(f);
   const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
@@ -143,9 +175,14 @@ FaceLoops map_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, dou
     std::vector<geo::Vec2> uv;
     std::vector<std::uint32_t> edge_at;  // edge of the segment starting at point k
     std::vector<bool> at_singular;
+    std::vector<std::size_t> run_start;  // where each half-edge's points start in uv
+    std::vector<bool> run_line;          // whether that half-edge's curve is a line
     bool have = false;
     geo::Vec2 last(0, 0);
     for (HalfedgeH h : b.loop_halfedges(l)) {
+      run_start.push_back(uv.size());
+      const geo::Curve& c = b.curve(edge_of(h));
+      run_line.push_back(std::holds_alternative<std::monostate>(c) || std::holds_alternative<geo::Line>(c));
       std::vector<geo::Vec3> pts = halfedge_polyline(b, h, chordal);
       for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
         bool sing = false;
@@ -173,13 +210,27 @@ FaceLoops map_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, dou
     if (pu) end.x() += 2 * M_PI * std::round((last.x() - end.x()) / (2 * M_PI));
     if (pv) end.y() += 2 * M_PI * std::round((last.y() - end.y()) / (2 * M_PI));
     const bool winds = (end - uv.front()).norm() > M_PI;
+    auto point = [&](std::size_t k) { return k < uv.size() ? uv[k] : end; };
+    // Whether each half-edge's points lie on the segment between its ends: a line's
+    // (sampled at its ends only; its image is straight on a plane, and a ruling on a
+    // cylinder or cone), or a curve's sampled at three points or more (a parallel circle
+    // on a cylinder; a curve sampled by one chord may bulge off it by `chordal`).
+    std::vector<bool> exact_at(uv.size(), false);
+    for (std::size_t r = 0; r < run_start.size(); ++r) {
+      const std::size_t k0 = run_start[r], k1 = r + 1 < run_start.size() ? run_start[r + 1] : uv.size();
+      bool exact = k1 > k0 && (run_line[r] || k1 - k0 >= 2);
+      for (std::size_t k = k0; k <= k1 && exact; ++k)
+        exact = !at_singular[k % uv.size()] && segment_distance(point(k), point(k0), point(k1)) <= eps;
+      for (std::size_t k = k0; k < k1; ++k) exact_at[k] = exact;
+    }
     bool any_singular = false;
     for (std::size_t k = 0; k < uv.size(); ++k) {
       const std::size_t n = k + 1;
-      const geo::Vec2 b2 = n < uv.size() ? uv[n] : end;
+      const geo::Vec2 b2 = point(n);
       const bool sing = at_singular[k] || at_singular[n % uv.size()];
       any_singular = any_singular || at_singular[k];
-      if (!sing) out.segs.push_back({uv[k], b2, li, edge_at[k], std::uint32_t(k)});
+      if (!sing)
+        out.segs.push_back({uv[k], b2, li, edge_at[k], std::uint32_t(k), exact_at[k], std::uint32_t(uv.size())});
     }
     if (winds && !any_singular) out.winding.push_back(l);
     if (!winds && !any_singular) {
@@ -198,18 +249,19 @@ double signed_area(const std::vector<geo::Vec2>& p) {
   return 0.5 * a;
 }
 
-// The loops' crossings and orientations, among `loops` of f.
+// The loops' crossings and orientations, among `loops` of f; with `with_touches`, also
+// where they touch without crossing (touches()).
 void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, const geo::Tolerances& tol,
-                      std::vector<Violation>& out) {
+                      std::vector<Violation>& out, bool with_touches) {
   const geo::Surface& s = b.surface(f);
   const double chordal = std::max(tol.length * 0.05, tol.precision * 10);
-  const FaceLoops fl = map_loops(b, f, loops, chordal, std::max(tol.precision * 100, chordal));
   const bool pu = geo::periodic_u(s), pv = geo::periodic_v(s);
 
   // Margin in parameter units: the precision over the surface's scale for angles, the
   // precision itself for lengths (planes, cylinder heights).
   const double scale = std::max(geo::surface_scale(s), tol.length);
   const double eps = std::max(tol.precision / scale, 1e-12) + (std::holds_alternative<geo::Plane>(s) ? tol.precision : 0.0);
+  const FaceLoops fl = map_loops(b, f, loops, chordal, std::max(tol.precision * 100, chordal), eps);
 
   std::vector<geo::Vec2> shifts{{0, 0}};
   if (pu) shifts.push_back({2 * M_PI, 0}), shifts.push_back({-2 * M_PI, 0});
@@ -234,8 +286,10 @@ void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, c
     }
   for (std::size_t i = 0; i < all.size(); ++i) order.push_back({std::min(all[i].a.x(), all[i].b.x()), i});
   std::sort(order.begin(), order.end());
-  bool self_reported = false, cross_reported = false;
-  for (std::size_t oi = 0; oi < order.size() && !(self_reported && cross_reported); ++oi) {
+  // One of each kind per face: crossing itself, crossing another loop, touching itself,
+  // touching another loop.
+  std::array<bool, 4> reported{};
+  for (std::size_t oi = 0; oi < order.size() && !std::all_of(reported.begin(), reported.end(), [](bool r) { return r; }); ++oi) {
     const std::size_t i = order[oi].second;
     const Seg& si = all[i];
     const double umax = std::max(si.a.x(), si.b.x());
@@ -245,17 +299,20 @@ void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, c
       const Seg& sj = all[j];
       // Pieces of one edge (a smooth curve, or a seam's two sides a period apart) are not compared.
       if (si.edge == sj.edge) continue;
-      if (!crosses(si.a, si.b, sj.a, sj.b, eps)) continue;
+      // A touch is decided only where both segments are their edges' exact images: a
+      // chord of a curve lies up to `chordal` off it; consecutive segments meet anyway.
+      const bool cross = crosses(si.a, si.b, sj.a, sj.b, eps);
+      if (!cross && !(with_touches && si.exact && sj.exact && !consecutive(si, sj) && touches(si, sj, eps))) continue;
       const bool same = si.loop == sj.loop;
-      if (same && self_reported) continue;
-      if (!same && cross_reported) continue;
-      (same ? self_reported : cross_reported) = true;
-      out.push_back({same ? "loop_self_intersection" : "loops_cross", {f.str(), "e" + std::to_string(si.edge), "e" + std::to_string(sj.edge)},
-                     same ? "a loop of " + f.str() + " crosses itself in the parameter domain (edges e" + std::to_string(si.edge) +
-                                " and e" + std::to_string(sj.edge) + ")"
-                          : "two loops of " + f.str() + " cross in the parameter domain (edges e" + std::to_string(si.edge) +
-                                " and e" + std::to_string(sj.edge) + ")",
-                     0.0});
+      bool& done = reported[(cross ? 0 : 2) + (same ? 0 : 1)];
+      if (done) continue;
+      done = true;
+      const std::string edges = "(edges e" + std::to_string(si.edge) + " and e" + std::to_string(sj.edge) + ")";
+      const std::string code = cross ? (same ? "loop_self_intersection" : "loops_cross") : (same ? "loop_touches_itself" : "loops_touch");
+      const std::string what = same ? "a loop of " + f.str() + (cross ? " crosses itself" : " touches itself away from its vertices")
+                                    : "two loops of " + f.str() + (cross ? " cross" : " touch away from their vertices");
+      out.push_back({code, {f.str(), "e" + std::to_string(si.edge), "e" + std::to_string(sj.edge)},
+                     what + " in the parameter domain " + edges, 0.0});
     }
   }
 
@@ -393,7 +450,7 @@ double lies_on_limit(const geo::Tolerances& tol, double input_deviation) {
 std::vector<Violation> loop_violations(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol) {
   std::vector<Violation> out;
   for (FaceH f : faces)
-    if (b.alive(f) && has_surface(b, f)) check_face_loops(b, f, b.loops_of(f), tol, out);
+    if (b.alive(f) && has_surface(b, f)) check_face_loops(b, f, b.loops_of(f), tol, out, true);
   return out;
 }
 
@@ -509,7 +566,7 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
   for (FaceH f : g.fs) {
     if (!has_surface(b, f)) continue;
     auto it = g.near.find(f);
-    check_face_loops(b, f, it == g.near.end() ? b.loops_of(f) : it->second.loops, tol, out);
+    check_face_loops(b, f, it == g.near.end() ? b.loops_of(f) : it->second.loops, tol, out, false);
   }
   if (out.empty() && g_external) {
     Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt, nullptr};

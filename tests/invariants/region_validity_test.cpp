@@ -65,6 +65,59 @@ TEST(RegionValidity, ASelfCrossingLoopIsFound) {
   EXPECT_NE(region_validity(b, r, kTol, kTol.precision), "");
 }
 
+// The top face of a box whose front edge is split at two points that are then swapped:
+// its loop runs A -> 0.7 -> 0.3 -> B along one line, so the first and third pieces lie on
+// each other over [0.3, 0.7] — a face folded onto itself, which crosses nothing but
+// touches itself (OpenCASCADE: a self-intersecting wire; the Table 1 audit met one made
+// by a defect injected beside another). The whole-model check finds it; the gate of a
+// single repair does not look for touches (a pinch zipped edge by edge passes through
+// them: spec/beautify.md). A spike of no width — the loop running past B and back to it —
+// touches itself at B.
+Body box_with_front_edge_split(const std::vector<double>& at, FaceH& top) {
+  Body b = build::box(1, 1, 1);
+  for (FaceH f : b.faces()) {
+    bool all_up = true;
+    for (VertexH v : b.loop_vertices(b.outer_loop(f))) all_up = all_up && b.point(v).z() > 0.5;
+    if (all_up) top = f;
+  }
+  HalfedgeH h = b.first(b.outer_loop(top));
+  const geo::Vec3 a = b.point(b.origin(h)), c = b.point(b.target(h));
+  std::vector<VertexH> made;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    auto s = euler::semv(b, h, a + 0.5 * (c - a));  // placed below
+    EXPECT_TRUE(s);
+    made.push_back(s->vertex);
+    h = s->next;
+  }
+  for (std::size_t k = 0; k < at.size(); ++k) b.set_point(made[k], a + at[k] * (c - a));
+  for (HalfedgeH x : b.loop_halfedges(b.outer_loop(top))) {
+    const geo::Vec3 p = b.point(b.origin(halfedge_of(edge_of(x), 0))), q = b.point(b.target(halfedge_of(edge_of(x), 0)));
+    b.set_curve(edge_of(x), geo::Line{p, (q - p).normalized()});
+  }
+  return b;
+}
+
+TEST(RegionValidity, AFaceFoldedOntoItselfTouchesItself) {
+  FaceH top;
+  Body b = box_with_front_edge_split({0.7, 0.3}, top);
+  ASSERT_TRUE(top.valid());
+  auto loops = loop_violations(b, {top}, kTol);
+  EXPECT_TRUE(has(loops, "loop_touches_itself")) << list(loops);
+  EXPECT_FALSE(has(loops, "loop_self_intersection")) << list(loops);
+  auto gate = region_violations(b, whole_body(b), kTol, kTol.precision);
+  EXPECT_FALSE(has(gate, "loop_touches_itself")) << list(gate);
+
+  FaceH top2;
+  Body spike = box_with_front_edge_split({0.5, 1.3}, top2);
+  auto at_b = loop_violations(spike, {top2}, kTol);
+  EXPECT_TRUE(has(at_b, "loop_touches_itself")) << list(at_b);
+  // Split but not folded: valid.
+  FaceH top3;
+  Body split = box_with_front_edge_split({0.3, 0.7}, top3);
+  auto fine = loop_violations(split, {top3}, kTol);
+  EXPECT_TRUE(fine.empty()) << list(fine);
+}
+
 // A triangular ring through p (counter-clockwise about f's outward normal, seen from the
 // disc inside it), its inside a face of its own on f's surface; the ring is f's hole.
 void add_triangle_ring(Body& b, FaceH f, const std::array<geo::Vec3, 3>& p) {
