@@ -36,8 +36,10 @@ const char* kHelp =
     "Findings (counterexamples, threshold flips, disagreements, and a witness for each \"Yes\"\n"
     "cell reached) are shrunk: fewest defects, fewest faces, no motion.\n"
     "A trial where problems of a type earlier than the pass are still there when it runs\n"
-    "(no pass for them yet, or refused) is outside the paper's claim: it is counted as\n"
-    "skipped, not judged.\n\n"
+    "(no pass for them yet, or refused), or where an earlier repair was kept with its\n"
+    "geometry consistent to the tolerance only (its region solve failed: beautify solves it\n"
+    "again after later passes, or undoes it), is outside the paper's claim: it is counted as\n"
+    "skipped (the second kind also as unsolved), not judged.\n\n"
     "  --trials N    trials per pass (default 200)\n"
     "  --seed S      the run's seed (default 1): the same seed gives the same table\n"
     "  --pass P      audit one pass only (a problem type name, e.g. short_edge)\n"
@@ -107,11 +109,14 @@ int replay(const std::string& path, std::ostream& out, std::ostream& err) {
   const double tol = audit::build(r)->tolerance;
   out << "base " << r.base << ", tolerance " << tol << ", pass " << problem_name(r.pass) << "\n" << t.description;
   if (!t.description.empty() && t.description.back() != '\n') out << "\n";
-  if (!t.precondition) {
+  if (!t.precondition && !t.left.empty()) {
     out << "skipped (outside the paper's claim): problems of earlier types were left:";
     for (ProblemType l : t.left) out << " " << problem_name(l);
     out << "\n";
   }
+  if (t.unsolved_before)
+    out << "skipped (outside the paper's claim): an earlier repair was kept with its geometry consistent to the "
+           "tolerance only (its region solve failed; beautify solves it again later or undoes it)\n";
   bool counterexample = false;
   out << t.created.size() << " problem(s) created\n";
   for (const Problem& p : t.created) {
@@ -122,7 +127,8 @@ int replay(const std::string& path, std::ostream& out, std::ostream& err) {
     for (const std::string& n : element_names(p)) out << " " << n;
     out << ": " << measure_name(p.measure_kind) << " " << p.measure << " (" << p.measure / tol
         << (p.measure_kind == Measure::area ? " t^2" : " t") << ")";
-    out << (v == audit::Verdict::counterexample ? (flip ? " — threshold flip" : " — COUNTEREXAMPLE")
+    out << (v == audit::Verdict::counterexample
+                ? (flip ? " — threshold flip" : t.precondition ? " — COUNTEREXAMPLE" : " — above the diagonal, not judged (skipped)")
             : v == audit::Verdict::disagreement ? " — disagreement with the paper"
                                                 : "");
     out << "\n";
@@ -246,8 +252,11 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.trials[std::size_t(problem_order(col) - 1)];
     out << "\nskipped ";
     for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.skipped[std::size_t(problem_order(col) - 1)];
+    out << "\nunsolved";
+    for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.skipped_unsolved[std::size_t(problem_order(col) - 1)];
     out << "\n(- : no pass for that type yet; skipped: trials with problems of an earlier type left when the\n"
-           "pass ran — their pass is not built or refused them — which the paper's claim does not cover)\n";
+           "pass ran — their pass is not built or refused them — or with an earlier repair kept consistent to the\n"
+           "tolerance only, its region solve failed (unsolved): states the paper's claim does not cover)\n";
     for (const auto& f : r.counterexamples)
       out << "COUNTEREXAMPLE: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created) << ": "
           << f.recipe.to_json().dump() << "\n";

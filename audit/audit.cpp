@@ -43,6 +43,8 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   // The state the pass sees in the pipeline: every registered pass before it has run.
   for (const Pass* p : passes())
     if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
+  for (const RepairEntry& e : report.problems)
+    if (e.repaired() && e.unsolved) out.precondition = false, out.unsolved_before = true;
   const Detection before = detect(b, tol);
   for (const Problem& p : before.problems)
     if (problem_order(p.type) < problem_order(r.pass)) {
@@ -199,6 +201,7 @@ Result run(const Options& o) {
       if (!t.ran) continue;
       if (!t.precondition) {
         res.skipped[idx(pass->type)]++;
+        if (t.unsolved_before) res.skipped_unsolved[idx(pass->type)]++;
         for (ProblemType left : t.left) res.skipped_by[idx(left)][idx(pass->type)]++;
         continue;
       }
@@ -263,6 +266,7 @@ nlohmann::json to_json(const Result& r) {
                        {"trials", r.trials[idx(col)]},
                        {"skipped", r.skipped[idx(col)]},
                        {"skipped_with_row_left", r.skipped_by[idx(row)][idx(col)]},
+                       {"skipped_unsolved", r.skipped_unsolved[idx(col)]},
                        {"pass_registered", find_pass(col) != nullptr},
                        {"if_found", v}});
     }

@@ -124,8 +124,10 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
       why = solve_why.empty() ? "the new geometry is not consistent within tolerance (deviation " + detail::fmt(dev) + ")"
                               : solve_why;
   }
-  if (why.empty() && !solve_why.empty())
+  if (why.empty() && !solve_why.empty()) {
     note += (note.empty() ? "" : "; ") + std::string("consistent to the tolerance only: ") + solve_why;
+    entry.unsolved = true;
+  }
   // The validity gate: the touched region valid at modelling precision, never worse than
   // the input (options.lies_on). A repair the solve could not bring to that precision is
   // kept consistent to the tolerance (local_deviation above) and solved again later; its

@@ -48,6 +48,10 @@ struct RepairEntry {
   std::string reason;                  // why not repaired (empty when repaired)
   double deviation = 0.0;              // largest geometric deviation left around the repair
   std::string note = {};               // how it was repaired, where the pass says (e.g. a new face's surface)
+  // Committed with its geometry consistent to the tolerance only: its region solve failed
+  // (the reason is in `note`); beautify solves it again after later repairs, and undoes
+  // the run that ends with it unsolved.
+  bool unsolved = false;
   // The region's geometry solve (repair/region_solve.h): how far each solved face moved
   // from its surface before the repair (largest sample distance), and the largest
   // distance left between a vertex and a surface of its faces.

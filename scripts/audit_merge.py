@@ -43,11 +43,12 @@ def main():
             m = cells.setdefault(key, {"count": 0, "threshold_flips": 0, "paper": c["paper"], "if_found": c["if_found"]})
             m["count"] += c["count"]
             m["threshold_flips"] += c.get("threshold_flips", 0)
-            pp = per_pass.setdefault(c["fixing"], {"trials": 0, "skipped": 0, "seen": set()})
+            pp = per_pass.setdefault(c["fixing"], {"trials": 0, "skipped": 0, "unsolved": 0, "seen": set()})
         for col in order:
             c = next(c for c in j["cells"] if c["fixing"] == col)
             per_pass[col]["trials"] += c["trials"]
             per_pass[col]["skipped"] += c["skipped"]
+            per_pass[col]["unsolved"] += c.get("skipped_unsolved", 0)  # since 2026-12-05
     seconds = sum(j.get("seconds", 0) for _, j in runs)
     per_shard = {j.get("trials_per_pass") for _, j in runs}
     findings = {k: [(s, f) for s, j in runs for f in j.get(k, [])]
@@ -56,7 +57,8 @@ def main():
         print(json.dumps({"shards": [s for s, _ in runs], "trials_per_pass_per_shard": sorted(per_shard),
                           "seconds": seconds,
                           "cells": [dict(created=r, fixing=c, **v) for (r, c), v in cells.items()],
-                          "passes": {c: {"trials": v["trials"], "skipped": v["skipped"]} for c, v in per_pass.items()},
+                          "passes": {c: {"trials": v["trials"], "skipped": v["skipped"], "unsolved": v["unsolved"]}
+                                     for c, v in per_pass.items()},
                           **{k: [dict(shard=s, **f) for s, f in v] for k, v in findings.items()}}, indent=1))
     else:
         print(f"{len(runs)} shards (seeds {runs[0][0]}..{runs[-1][0]}), {sorted(per_shard)} trials per pass each, "
@@ -78,6 +80,8 @@ def main():
             print(f"| {SHORT[row]} | " + " | ".join(out) + " |")
         print("| trials judged | " + " | ".join(str(per_pass[c]["trials"]) for c in order) + " |")
         print("| skipped | " + " | ".join(str(per_pass[c]["skipped"]) for c in order) + " |")
+        if any(v["unsolved"] for v in per_pass.values()):
+            print("| of which unsolved | " + " | ".join(str(per_pass[c]["unsolved"]) for c in order) + " |")
         for k in ("counterexamples", "threshold_flips", "disagreements"):
             for s, f in findings[k]:
                 print(f"\n{k[:-1]} (shard {s}): {f['recipe']['pass']} created {f['created']}: {json.dumps(f['recipe'])}")
