@@ -36,10 +36,11 @@ const char* kHelp =
     "Findings (counterexamples, threshold flips, disagreements, and a witness for each \"Yes\"\n"
     "cell reached) are shrunk: fewest defects, fewest faces, no motion.\n"
     "A trial where problems of a type earlier than the pass are still there when it runs\n"
-    "(no pass for them yet, or refused), or where an earlier repair was kept with its\n"
-    "geometry consistent to the tolerance only (its region solve failed: beautify solves it\n"
-    "again after later passes, or undoes it), is outside the paper's claim: it is counted as\n"
-    "skipped (the second kind also as unsolved), not judged.\n\n"
+    "(no pass for them yet, or refused), or where a repair was kept provisionally at the end\n"
+    "of its pass (its geometry consistent to the tolerance only, its region solve failed, or\n"
+    "its faces' loops touching: beautify solves it again after later passes, or undoes it),\n"
+    "is outside the paper's claim: it is counted as skipped (the second kind also as\n"
+    "unsolved), not judged.\n\n"
     "  --trials N    trials per pass (default 200)\n"
     "  --seed S      the run's seed (default 1): the same seed gives the same table\n"
     "  --pass P      audit one pass only (a problem type name, e.g. short_edge)\n"
@@ -114,9 +115,9 @@ int replay(const std::string& path, std::ostream& out, std::ostream& err) {
     for (ProblemType l : t.left) out << " " << problem_name(l);
     out << "\n";
   }
-  if (t.unsolved_before)
-    out << "skipped (outside the paper's claim): an earlier repair was kept with its geometry consistent to the "
-           "tolerance only (its region solve failed; beautify solves it again later or undoes it)\n";
+  if (t.provisional)
+    out << "skipped (outside the paper's claim): a repair was kept provisionally (its geometry consistent to the "
+           "tolerance only, or its faces' loops touching; beautify solves it again later or undoes it)\n";
   bool counterexample = false;
   out << t.created.size() << " problem(s) created\n";
   for (const Problem& p : t.created) {
@@ -255,8 +256,8 @@ int cmd_audit(const std::vector<std::string>& argv, std::ostream& out, std::ostr
     out << "\nunsolved";
     for (ProblemType col : kAllProblemTypes) out << std::setw(10) << r.skipped_unsolved[std::size_t(problem_order(col) - 1)];
     out << "\n(- : no pass for that type yet; skipped: trials with problems of an earlier type left when the\n"
-           "pass ran — their pass is not built or refused them — or with an earlier repair kept consistent to the\n"
-           "tolerance only, its region solve failed (unsolved): states the paper's claim does not cover)\n";
+           "pass ran — their pass is not built or refused them — or with a repair kept provisionally (unsolved):\n"
+           "states the paper's claim does not cover)\n";
     for (const auto& f : r.counterexamples)
       out << "COUNTEREXAMPLE: " << problem_name(f.recipe.pass) << " created " << problem_name(f.created) << ": "
           << f.recipe.to_json().dump() << "\n";

@@ -44,7 +44,7 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   for (const Pass* p : passes())
     if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
   for (const RepairEntry& e : report.problems)
-    if (e.repaired() && e.unsolved) out.precondition = false, out.unsolved_before = true;
+    if (e.repaired() && e.unsolved) out.precondition = false, out.provisional = true;
   const Detection before = detect(b, tol);
   for (const Problem& p : before.problems)
     if (problem_order(p.type) < problem_order(r.pass)) {
@@ -55,6 +55,8 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   const Body before_pass = b;  // for telling a flip (below); a trial's model is small
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
+  for (const RepairEntry& e : handled)
+    if (e.repaired() && e.unsolved) out.precondition = false, out.provisional = true;
   out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
   if (std::any_of(out.created.begin(), out.created.end(),
                   [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {
@@ -201,7 +203,7 @@ Result run(const Options& o) {
       if (!t.ran) continue;
       if (!t.precondition) {
         res.skipped[idx(pass->type)]++;
-        if (t.unsolved_before) res.skipped_unsolved[idx(pass->type)]++;
+        if (t.provisional) res.skipped_unsolved[idx(pass->type)]++;
         for (ProblemType left : t.left) res.skipped_by[idx(left)][idx(pass->type)]++;
         continue;
       }

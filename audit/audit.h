@@ -27,12 +27,14 @@ struct TrialResult {
   // refused them) does not meet that precondition: it is counted apart, not judged.
   bool precondition = true;
   std::vector<ProblemType> left;    // the earlier types still there when the pass ran
-  // Neither is a model some earlier repair left with its geometry consistent to the
-  // tolerance only (RepairEntry::unsolved): the pipeline solves it again after the later
-  // passes, or undoes the run and refuses it; what a pass makes of it in between is not a
-  // state the claim speaks of (two 08cd799-run counterexamples on paper10 were pinches
-  // read off such a model). Such a trial is skipped too.
-  bool unsolved_before = false;
+  // Nor is a model with a repair kept provisionally (RepairEntry::unsolved): its geometry
+  // consistent to the tolerance only (its region solve failed), or its faces' loops left
+  // touching, by an earlier pass or by the audited one, still so at the end of its pass.
+  // Beautify solves it again after the later passes, or undoes the run and refuses it;
+  // what a pass makes of it in between is not a state the claim speaks of (three
+  // counterexamples of the 08cd799 and e4b68bd runs were pinches read off such models:
+  // docs/table1-audit.md, session 26). Such a trial is skipped too.
+  bool provisional = false;
   std::vector<Problem> created;     // present after the pass, not before it
   // Those of `created` on or above the diagonal that a repair's geometry moved across the
   // tolerance (a threshold flip, docs/table1-audit.md), not a pass that broke the order,
@@ -102,7 +104,7 @@ struct Result {
   // skipped_by[type][pass]: skipped trials of the pass in which a problem of that earlier
   // type was left (a trial can count under several types).
   std::array<std::array<long, 11>, 11> skipped_by{};
-  // Of skipped, trials where an earlier repair was left unsolved (TrialResult::unsolved_before).
+  // Of skipped, trials with a repair kept provisionally (TrialResult::provisional).
   std::array<long, 11> skipped_unsolved{};
   // flips[row][col]: of cells[row][col], trials whose created problems of that type
   // (on or above the diagonal) were all threshold flips (TrialResult::near_threshold).

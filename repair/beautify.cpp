@@ -69,8 +69,23 @@ struct Unsettled {
   std::size_t entry;  // its index in BeautifyReport::problems
   int round = 0;      // the pipeline's round that made it
   Touched touched;
-  detail::OriginalFaces original;
+  detail::OriginalFaces original;  // empty when only `touching`
+  // The repair left loops of its faces touching (a pinch zipped on one side, its next zip
+  // still to come): settled when a later repair has removed the touch.
+  bool touching = false;
 };
+
+// Where loops of the faces in `faces` touch without crossing (region_validity.h: a face
+// folded onto itself), for faces of at most kManyLoops loops (a plate with a hole per
+// feature is left to the whole-model check); "" when none does.
+std::string touching_loops(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol) {
+  std::set<FaceH> few;
+  for (FaceH f : faces)
+    if (b.alive(f) && b.loops_of(f).size() <= kManyLoops) few.insert(f);
+  for (const Violation& v : loop_violations(b, few, tol))
+    if (v.invariant == "loop_touches_itself" || v.invariant == "loops_touch") return v.detail;
+  return "";
+}
 
 // The faces whose surface was set from journal entry `from` on: the validity gate checks
 // those whole (invariants/region_validity.h).
@@ -83,7 +98,7 @@ std::set<FaceH> surfaces_set_since(const Journal& j, std::size_t from) {
 
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
                     const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr,
-                    const FaceBoundsMemo* memo = nullptr) {
+                    const FaceBoundsMemo* memo = nullptr, bool* touching = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   if (auto u = options.unsolved.find({p.type, p.elements}); u != options.unsolved.end()) {
     entry.reason = u->second;
@@ -156,6 +171,14 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     entry.surfaces_moved.clear();
     return entry;
   }
+  // Loops left touching (the gate lets them through: a pinch zipped edge by edge passes
+  // through them) make the repair provisional, like an unsolved one: a later repair must
+  // remove the touch, or the run is undone and the repair refused.
+  if (const std::string t = touching_loops(b, touched.faces, tol); !t.empty()) {
+    note += (note.empty() ? "" : "; ") + std::string("provisional: ") + t;
+    entry.unsolved = true;
+    if (touching) *touching = true;
+  }
   entry.operators = b.journal().op_names(tx.first_entry());
   entry.note = note;
   tx.commit();
@@ -226,10 +249,12 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     }
     Touched touched;
     detail::OriginalFaces original;
-    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo);
+    bool touching = false;
+    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo, &touching);
     const bool ok = entry.repaired();
     report.problems.push_back(std::move(entry));
-    if (ok && unsettled && !original.empty()) unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original)});
+    if (ok && unsettled && (!original.empty() || touching))
+      unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original), touching});
     if (!ok) {
       left_of_type.push_back(std::move(p));
       continue;
@@ -275,6 +300,15 @@ Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unse
   for (Unsettled& u : unsettled) {
     Touched t = alive_part(b, u.touched);
     if (t.empty()) continue;  // a later repair removed all of it, and solved its own region
+    if (u.original.empty()) {  // only touching: settled once the touch is gone
+      if (!touching_loops(b, t.faces, tol).empty()) {
+        still.push_back(std::move(u));
+      } else {
+        r.problems[u.entry].note += "; its faces' loops no longer touch after the later repairs";
+        r.problems[u.entry].unsolved = false;
+      }
+      continue;
+    }
     Transaction tx(b);
     std::string why;
     detail::RegionSolve s;
@@ -299,6 +333,12 @@ Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unse
     e.note += "; solved to the modelling precision after the later repairs (largest residual " +
               detail::fmt(s.max_residual) + ")";
     e.max_residual = s.max_residual;
+    u.original.clear();
+    if (u.touching && !touching_loops(b, t.faces, tol).empty()) {
+      still.push_back(std::move(u));
+      continue;
+    }
+    e.unsolved = false;
   }
   unsettled = std::move(still);
   return changed;
@@ -318,7 +358,11 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
   std::vector<Problem> left;
   BeautifyOptions opt = options;
   if (!(opt.lies_on > 0)) opt.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
-  run_queue(b, tol, pass, std::move(mine), report, opt, left);
+  // As a round of beautify ends: the repairs kept provisionally are solved again, or
+  // checked again for touching loops; those that stay so keep RepairEntry::unsolved.
+  std::vector<Unsettled> unsettled;
+  run_queue(b, tol, pass, std::move(mine), report, opt, left, &unsettled);
+  settle(b, tol, unsettled, report);
 }
 
 namespace {
@@ -395,8 +439,11 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
     if (beside) continue;
     const RepairEntry& e = r.problems[u.entry];
     unsolved[{u.round, e.problem.type, e.problem.elements}] =
-        "its geometry could not be solved to the modelling precision, even after the later repairs, and the "
-        "model would not be valid (" + e.note + ")";
+        u.original.empty()
+            ? "it left loops of its faces touching, and no later repair removed the touch: the model would not be "
+              "valid (" + e.note + ")"
+            : "its geometry could not be solved to the modelling precision, even after the later repairs, and the "
+              "model would not be valid (" + e.note + ")";
   }
   // A problem refused in one round and taken up again in a later one is reported once,
   // with its last outcome.

@@ -134,7 +134,7 @@ TEST(Audit, SavedFindingsReplay) {
     if (kind == "counterexample")
       EXPECT_FALSE(creates && t.precondition) << name << ": the counterexample is back";
     else if (kind == "unsolved")  // not judged: an earlier repair's geometry was left unsolved
-      EXPECT_TRUE(t.unsolved_before && !t.precondition) << name << ": now judged";
+      EXPECT_TRUE(t.provisional && !t.precondition) << name << ": now judged";
     else
       EXPECT_TRUE(creates) << name << ": the " << kind << " no longer shows";
     // A flip is told from a counterexample (TrialResult::near_threshold).

@@ -3,8 +3,8 @@
 // them (zoo::inject, each of the eleven types in turn, and some cases with 2-3 defects), a
 // random rigid motion, a STEP round trip, beautify, and an honest judgement against the
 // designer's part moved the same way:
-//   - the output is a valid closed solid (check_topology, one shell, no border cycle,
-//     OpenCASCADE's BRepCheck);
+//   - the output is a valid closed solid (check_topology, one shell, no border cycle, its
+//     faces' loops neither crossing nor touching (loop_violations), OpenCASCADE's BRepCheck);
 //   - its vertex, edge, face and loop counts are the designer's;
 //   - its faces match the designer's one to one (each output face to the designer face its
 //     tessellation lies nearest to on average) and the matched faces share edges exactly
@@ -273,6 +273,12 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   std::vector<Violation> vs = check_topology(out);
   if (!vs.empty()) return judged(Verdict::invalid, to_string(vs[0]));
   if (c.shells != 1 || c.border_cycles != 0) return judged(Verdict::invalid, "not one closed shell: " + str(c));
+  // Our own check of the faces' loops (what `kintsugi check` reports): crossing, touching.
+  {
+    const std::vector<FaceH> fs = out.faces();
+    std::vector<Violation> lv = loop_violations(out, std::set<FaceH>(fs.begin(), fs.end()), run_tol);
+    if (!lv.empty()) return judged(Verdict::invalid, to_string(lv[0]));
+  }
   if (io::OcctVerdict ov = io::occt_check(out, run_tol.precision); !ov.valid)
     return judged(Verdict::invalid, "BRepCheck: " + (ov.problems.empty() ? std::string() : ov.problems[0]));
   if (!(c == want)) return judged(Verdict::counts, str(c) + " want " + str(want));
