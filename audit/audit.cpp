@@ -44,7 +44,7 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   for (const Pass* p : passes())
     if (problem_order(p->type) < problem_order(r.pass)) run_pass(b, tol, p->type, report, options);
   for (const RepairEntry& e : report.problems)
-    if (e.repaired() && e.unsolved) out.precondition = false, out.provisional = true;
+    if (e.repaired() && e.provisional()) out.precondition = false, out.provisional = true;
   const Detection before = detect(b, tol);
   for (const Problem& p : before.problems)
     if (problem_order(p.type) < problem_order(r.pass)) {
@@ -55,8 +55,11 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   const Body before_pass = b;  // for telling a flip (below); a trial's model is small
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
+  // The audited pass's own unsolved repairs are judged, as they always were (its created
+  // problems are read off the geometry it left); loops it left touching are not a state
+  // beautify keeps.
   for (const RepairEntry& e : handled)
-    if (e.repaired() && e.unsolved) out.precondition = false, out.provisional = true;
+    if (e.repaired() && e.touching) out.precondition = false, out.provisional = true;
   out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
   if (std::any_of(out.created.begin(), out.created.end(),
                   [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {

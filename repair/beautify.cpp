@@ -176,7 +176,7 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   // remove the touch, or the run is undone and the repair refused.
   if (const std::string t = touching_loops(b, touched.faces, tol); !t.empty()) {
     note += (note.empty() ? "" : "; ") + std::string("provisional: ") + t;
-    entry.unsolved = true;
+    entry.touching = true;
     if (touching) *touching = true;
   }
   entry.operators = b.journal().op_names(tx.first_entry());
@@ -305,7 +305,7 @@ Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unse
         still.push_back(std::move(u));
       } else {
         r.problems[u.entry].note += "; its faces' loops no longer touch after the later repairs";
-        r.problems[u.entry].unsolved = false;
+        r.problems[u.entry].touching = false;
       }
       continue;
     }
@@ -334,11 +334,12 @@ Touched settle(Body& b, const geo::Tolerances& tol, std::vector<Unsettled>& unse
               detail::fmt(s.max_residual) + ")";
     e.max_residual = s.max_residual;
     u.original.clear();
+    e.unsolved = false;
     if (u.touching && !touching_loops(b, t.faces, tol).empty()) {
       still.push_back(std::move(u));
       continue;
     }
-    e.unsolved = false;
+    e.touching = false;
   }
   unsettled = std::move(still);
   return changed;
@@ -359,7 +360,8 @@ void run_pass(Body& b, const geo::Tolerances& tol, ProblemType t, BeautifyReport
   BeautifyOptions opt = options;
   if (!(opt.lies_on > 0)) opt.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
   // As a round of beautify ends: the repairs kept provisionally are solved again, or
-  // checked again for touching loops; those that stay so keep RepairEntry::unsolved.
+  // checked again for touching loops; those that stay so keep RepairEntry::unsolved or
+  // RepairEntry::touching.
   std::vector<Unsettled> unsettled;
   run_queue(b, tol, pass, std::move(mine), report, opt, left, &unsettled);
   settle(b, tol, unsettled, report);

@@ -52,6 +52,10 @@ struct RepairEntry {
   // (the reason is in `note`); beautify solves it again after later repairs, and undoes
   // the run that ends with it unsolved.
   bool unsolved = false;
+  // Committed with loops of its faces touching (a pinch zipped on one side, its next zip
+  // to come): beautify undoes the run that ends with the touch still there.
+  bool touching = false;
+  bool provisional() const { return unsolved || touching; }
   // The region's geometry solve (repair/region_solve.h): how far each solved face moved
   // from its surface before the repair (largest sample distance), and the largest
   // distance left between a vertex and a surface of its faces.
