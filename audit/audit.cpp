@@ -55,11 +55,11 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options) {
   const Body before_pass = b;  // for telling a flip (below); a trial's model is small
   run_pass(b, tol, r.pass, report, options);
   const std::vector<RepairEntry> handled(report.problems.begin() + std::ptrdiff_t(first), report.problems.end());
-  // The audited pass's own unsolved repairs are judged, as they always were (its created
-  // problems are read off the geometry it left); loops it left touching are not a state
-  // beautify keeps.
+  // The audited pass's own provisional repairs too: beautify would solve them after the
+  // later passes or undo them (5cd8c92 judged its unsolved ones, and its run found a pinch
+  // read off one: docs/table1-audit.md, session 26).
   for (const RepairEntry& e : handled)
-    if (e.repaired() && e.touching) out.precondition = false, out.provisional = true;
+    if (e.repaired() && e.provisional()) out.precondition = false, out.provisional = true;
   out.created = created_by(r.pass, before.problems, detect(b, tol).problems, handled);
   if (std::any_of(out.created.begin(), out.created.end(),
                   [&](const Problem& p) { return verdict(p.type, r.pass) == Verdict::counterexample; })) {

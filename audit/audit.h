@@ -27,10 +27,10 @@ struct TrialResult {
   // refused them) does not meet that precondition: it is counted apart, not judged.
   bool precondition = true;
   std::vector<ProblemType> left;    // the earlier types still there when the pass ran
-  // Nor is a model with a repair kept provisionally (RepairEntry::provisional): by an
-  // earlier pass, its geometry consistent to the tolerance only (its region solve failed)
-  // or its faces' loops left touching; by the audited pass, loops left touching; still so
-  // at the end of its pass.
+  // Nor is a model with a repair kept provisionally (RepairEntry::provisional), by an
+  // earlier pass or the audited one: its geometry consistent to the tolerance only (its
+  // region solve failed) or its faces' loops left touching, still so at the end of its
+  // pass.
   // Beautify solves it again after the later passes, or undoes the run and refuses it;
   // what a pass makes of it in between is not a state the claim speaks of (three
   // counterexamples of the 08cd799 and e4b68bd runs were pinches read off such models:
