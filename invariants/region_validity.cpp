@@ -93,7 +93,6 @@ struct Seg {
   std::uint32_t loop_points = 0;  // segments in the loop, for telling consecutive ones
 };
 
-
 double cross2(const geo::Vec2& a, const geo::Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Distance from p to the segment a–b.
@@ -139,7 +138,6 @@ bool crosses(const geo::Vec2& p, const geo::Vec2& q, const geo::Vec2& r, const g
   const double o3 = cross2(d2, p - r) / l2, o4 = cross2(d2, q - r) / l2;
   return ((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps));
 }
-
 
 // Points where the surface's parametrisation is singular (sphere poles, cone apex): the
 // angle there is arbitrary, so segments ending there are left out.
@@ -287,8 +285,8 @@ void check_face_loops(const Body& b, FaceH f, const std::vector<LoopH>& loops, c
   for (std::size_t i = 0; i < all.size(); ++i) order.push_back({std::min(all[i].a.x(), all[i].b.x()), i});
   std::sort(order.begin(), order.end());
   // One of each kind per face: crossing itself, crossing another loop, touching itself,
-  // touching another loop.
-  std::array<bool, 4> reported{};
+  // touching another loop (the last two done already when not looked for).
+  std::array<bool, 4> reported{false, false, !with_touches, !with_touches};
   for (std::size_t oi = 0; oi < order.size() && !std::all_of(reported.begin(), reported.end(), [](bool r) { return r; }); ++oi) {
     const std::size_t i = order[oi].second;
     const Seg& si = all[i];
