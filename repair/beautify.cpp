@@ -98,7 +98,7 @@ std::set<FaceH> surfaces_set_since(const Journal& j, std::size_t from) {
 
 RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const BeautifyOptions& options,
                     const Pass& pass, Touched& touched, detail::OriginalFaces* unsettled = nullptr,
-                    const FaceBoundsMemo* memo = nullptr, bool* touching = nullptr) {
+                    const FaceBoundsMemo* memo = nullptr) {
   RepairEntry entry{p, Outcome::refused, {}, "", 0.0};
   if (auto u = options.unsolved.find({p.type, p.elements}); u != options.unsolved.end()) {
     entry.reason = u->second;
@@ -177,7 +177,6 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
   if (const std::string t = touching_loops(b, touched.faces, tol); !t.empty()) {
     note += (note.empty() ? "" : "; ") + std::string("provisional: ") + t;
     entry.touching = true;
-    if (touching) *touching = true;
   }
   entry.operators = b.journal().op_names(tx.first_entry());
   entry.note = note;
@@ -249,9 +248,8 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     }
     Touched touched;
     detail::OriginalFaces original;
-    bool touching = false;
-    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo, &touching);
-    const bool ok = entry.repaired();
+    RepairEntry entry = attempt(b, p, tol, options, *pass, touched, &original, memo);
+    const bool ok = entry.repaired(), touching = entry.touching;
     report.problems.push_back(std::move(entry));
     if (ok && unsettled && (!original.empty() || touching))
       unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original), touching});
