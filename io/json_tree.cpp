@@ -100,6 +100,17 @@ double JsonView::as_double() const {
   }
 }
 
+bool join_objects(JsonView a, JsonView b, JsonTree* out) {
+  JsonTreeBuilder builder(out);
+  builder.reset();
+  builder.open_object();
+  for (JsonView part : {a, b})
+    for (JsonView m = part.first(); m; m = m.next())
+      if (!builder.key(m.key()) || !builder.copy(m)) return false;
+  builder.close();
+  return true;
+}
+
 JsonView JsonView::operator[](std::size_t i) const {
   JsonView c = first();
   for (; c && i > 0; --i) c = c.next();

@@ -109,6 +109,7 @@ class JsonTreeBuilder {
     std::uint32_t last = JsonTree::kNone;
     std::unordered_set<std::string> keys;  // only past kLinearKeys members
   };
+
   static constexpr std::uint32_t kLinearKeys = 16;
 
   JsonTree* tree_;
@@ -118,6 +119,11 @@ class JsonTreeBuilder {
   std::uint32_t open(JsonTree::Kind kind);
   std::uint32_t place(std::uint32_t n);
 };
+
+// An object with the members of `a`, then those of `b` (both objects), in `out`: the top
+// level of a document read in pieces. False if a key is in both (the whole text has it
+// twice).
+bool join_objects(JsonView a, JsonView b, JsonTree* out);
 
 // A node of a JsonTree, read-only; a default one is "absent" (a missing member).
 class JsonView {

@@ -4,8 +4,6 @@
 // elements are independent, so the two halves of the text are parsed and checked at once.
 #include "io/native_json_parse.h"
 
-#include "kernel/huge_pages.h"
-
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -48,9 +46,9 @@ bool guess_kind(const char* p, std::size_t n, ElementKind* kind) {
 
 }  // namespace
 
-bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut) {
-  const std::size_t end = std::min(size, size / 2 + reach);
-  for (std::size_t nl = size / 2; nl < end; ++nl) {
+bool find_cut_at(const char* text, std::size_t size, std::size_t from, std::size_t reach, Cut* cut) {
+  const std::size_t end = from + std::min(reach, size - std::min(size, from));
+  for (std::size_t nl = from; nl < end; ++nl) {
     const void* found = std::memchr(text + nl, '\n', end - nl);
     if (!found) return false;
     nl = std::size_t(static_cast<const char*>(found) - text);
@@ -68,57 +66,48 @@ bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut) {
   return false;
 }
 
-FastParse parse_native_simdjson_halves(char* text, std::size_t size, std::size_t capacity, ElementSink* head,
+bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut) {
+  return find_cut_at(text, size, size / 2, reach, cut);
+}
+
+FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::size_t capacity, ElementSink* head,
                                        JsonTree* head_root, ElementSink* tail, JsonTree* tail_root, ElementKind* cut,
-                                       std::size_t* head_count) {
+                                       std::size_t* head_count, std::size_t piece_bytes) {
   Cut c;
   // Elements are short: an element boundary within a few megabytes of the middle, or the
   // middle is in something else (meta, one huge element) and one thread reads it all.
   if (!find_cut(text, size, std::size_t(4) << 20, &c)) return FastParse::kUseReference;
 
-  // The second half, on its own thread: `{"":[` and the text from the next element, copied
-  // into a buffer with simdjson's padding (the copy is a small part of parsing it).
-  static constexpr std::string_view kOpen = "{\"\":[";
+  // The second half on its own thread, the first here.
+  Run first, second;
+  first.end = c.comma;
+  second.begin = c.next, second.end = size, second.continued = int(c.kind);
+  first.piece_bytes = second.piece_bytes = piece_bytes;
+  RunEnds first_ends, second_ends;
   FastParse tail_result = FastParse::kUseReference;
-  std::size_t tail_count = 0;
   std::exception_ptr tail_error;
-  std::thread second([&] {
+  std::thread thread([&] {
     try {
-      const std::size_t n = kOpen.size() + (size - c.next);
-      const std::size_t padded = n + simdjson_padding();
-      auto buffer = std::make_unique_for_overwrite<char[]>(padded);
-      advise_huge_pages(buffer.get(), padded);
-      std::memcpy(buffer.get(), kOpen.data(), kOpen.size());
-      std::memcpy(buffer.get() + kOpen.size(), text + c.next, size - c.next);
-      std::memset(buffer.get() + n, ' ', simdjson_padding());
-      tail_result = parse_native_simdjson_tail(buffer.get(), n, padded, c.kind, tail, tail_root, &tail_count);
+      tail_result = parse_native_simdjson_run(text, size, capacity, second, tail, tail_root, &second_ends);
     } catch (...) {
       tail_error = std::current_exception();
     }
   });
-
-  // The first half, here: the text up to the comma, closed by "]}" written over the comma
-  // and the byte after it (white space, which the second half does not start before).
   FastParse head_result = FastParse::kUseReference;
   std::exception_ptr head_error;
-  const char saved[2] = {text[c.comma], text[c.comma + 1]};
-  text[c.comma] = ']';
-  text[c.comma + 1] = '}';
-  ElementKind head_kind = kVertices;
   try {
-    head_result = parse_native_simdjson_head(text, c.comma + 2, capacity, head, head_root, &head_kind, head_count);
+    head_result = parse_native_simdjson_run(text, size, capacity, first, head, head_root, &first_ends);
   } catch (...) {
     head_error = std::current_exception();
   }
-  text[c.comma] = saved[0];
-  text[c.comma + 1] = saved[1];
-  second.join();
+  thread.join();
   if (head_error) std::rethrow_exception(head_error);
   if (tail_error) std::rethrow_exception(tail_error);
-  if (head_result != FastParse::kDone || tail_result != FastParse::kDone || head_kind != c.kind || *head_count == 0 ||
-      tail_count == 0)
+  if (head_result != FastParse::kDone || tail_result != FastParse::kDone || first_ends.last_kind != int(c.kind) ||
+      first_ends.last_count == 0 || second_ends.first_count == 0)
     return FastParse::kUseReference;
   *cut = c.kind;
+  *head_count = first_ends.last_count;
   return FastParse::kDone;
 }
 

@@ -28,60 +28,76 @@ class ElementSink {
   virtual ~ElementSink() = default;
   // Element `index` of the top-level array `kind`, complete.
   virtual void element(ElementKind kind, std::size_t index, JsonView value) = 0;
-  // The array `kind` has `count` elements, in a document of `bytes` (when the parser knows
-  // it before them).
+  // `count` more elements of array `kind` follow, in a piece of `bytes` of the document
+  // (when the parser knows it before them).
   virtual void expect(ElementKind kind, std::size_t count, std::size_t bytes) = 0;
 };
 
 enum class FastParse { kDone, kUseReference };
 
-// Parses data[0, size) — with at least 64 readable bytes past `size` (simdjson's padding;
-// `capacity` is the whole buffer) — delivering elements to `sink` and building the rest
-// in `root`. On kUseReference the sink may have seen some elements already: the caller
-// starts again from scratch with the reference parser.
-FastParse parse_native_simdjson(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
-                                JsonTree* root);
-
-// The padding parse_native_simdjson needs past the end of the text.
+// The padding the fast parser needs past the end of the text.
 std::size_t simdjson_padding();
+
+// -- Pieces --
+//
+// simdjson indexes a whole document before it is read: four bytes per token, written to
+// fresh memory and read back, 1.6 times the text of a native file. So a large document
+// is read in pieces of about a megabyte, each copied into one reused buffer and parsed by
+// one reused parser: cut between two elements of an element array, a piece is read as
+// `{"":[` + its text + `]}` (without the first at the document's start, the second at its
+// end), where the text of the document has the comma between the two elements and then
+// white space with a line break in it. The cut is a guess made from the bytes alone; the
+// parses check it. When every piece is valid JSON, each but the last ends inside an
+// element array of the kind guessed for the next with at least one element, and each but
+// the first continues that array in its first member "", then the whole text is valid
+// JSON and its element arrays are the pieces' elements in order (the top levels are joined
+// refusing a key that two pieces have). Anything else: kUseReference.
+//
+// A run is text[begin, end): begin is 0 or where an element starts after a cut (`continued`:
+// the kind of its array, else -1), end is the text's size or a cut's comma.
+struct Run {
+  std::size_t begin = 0, end = 0;
+  int continued = -1;
+  std::size_t piece_bytes = std::size_t(1) << 20;  // each piece ends at the first cut past this
+};
+struct RunEnds {
+  std::size_t first_count = 0;  // elements of the continued array in the run
+  int last_kind = -1;           // the run's last member, if an element array: its kind
+  std::size_t last_count = 0;   // ... and its elements in the run
+};
+// Parses a run of text[0, size) — with simdjson_padding() readable bytes past `size` up to
+// `capacity` — delivering elements to `sink` (the continued array's from index 0, each
+// array's in order) and building the rest of the run's top level in `root` (element arrays
+// there but empty). On kUseReference the sink may have seen some elements already: the
+// caller starts again from scratch.
+FastParse parse_native_simdjson_run(const char* text, std::size_t size, std::size_t capacity, const Run& run,
+                                    ElementSink* sink, JsonTree* root, RunEnds* ends);
+
+// A whole document, as one run of pieces of `piece_bytes`.
+FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t capacity, ElementSink* sink,
+                                JsonTree* root, std::size_t piece_bytes = Run{}.piece_bytes);
 
 // -- Two halves at once (io/native_json_halves.cpp) --
 //
-// A large document is parsed on two threads: cut between two elements of the element
-// array that spans its middle, the first half read as `text[0, comma) + "]}"` and the
-// second as `{"":[` + `text[next, size)`, where text[comma] is the comma between the two
-// elements and text(comma, next) white space with a line break in it. The cut is a guess
-// made from the bytes alone; the parses check it. When both halves are valid JSON, the
-// first ends inside an element array of kind `cut` holding at least one element, and the
-// second continues that kind with at least one more, then the whole text is valid JSON
-// and its element arrays are the two halves' elements in order (the caller merges the
-// two top levels and must refuse a key that both have). Anything else: kUseReference,
-// and the caller parses the whole text as one (a refusal is then worded as always).
+// A large document is parsed on two threads, each a run: cut between two elements of the
+// element array that spans its middle, the first half is text[0, comma), the second
+// text[next, size), read as above.
 
-// The two halves, each as parse_native_simdjson. The first: its last member must be an
-// element array (*cut, with *count elements). The second: its first member, "", is the
-// rest of array `cut` (*count elements, delivered as indices from 0); it is not a member
-// of `root`.
-FastParse parse_native_simdjson_head(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
-                                     JsonTree* root, ElementKind* cut, std::size_t* count);
-FastParse parse_native_simdjson_tail(const char* data, std::size_t size, std::size_t capacity, ElementKind cut,
-                                     ElementSink* sink, JsonTree* root, std::size_t* count);
-
-// Parses `text` in two halves as above, elements of the first half to `head` (with
-// `head_root` the top level), of the second to `tail` (their indices counted from 0 in
-// the cut array). Writes two bytes at the cut while the first half is parsed and puts
-// them back before returning. *cut: the array cut; *head_count: its elements in the
-// first half.
-FastParse parse_native_simdjson_halves(char* text, std::size_t size, std::size_t capacity, ElementSink* head,
+// Parses `text` in two halves, elements of the first half to `head` (with `head_root` the
+// top level), of the second to `tail` (their indices counted from 0 in the cut array; the
+// caller merges the two top levels and must refuse a key that both have). *cut: the array
+// cut; *head_count: its elements in the first half.
+FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::size_t capacity, ElementSink* head,
                                        JsonTree* head_root, ElementSink* tail, JsonTree* tail_root, ElementKind* cut,
-                                       std::size_t* head_count);
+                                       std::size_t* head_count, std::size_t piece_bytes = Run{}.piece_bytes);
 
-// Where the text can be cut (above), searching forward from its middle for at most
-// `reach` bytes: false when there is no such place.
+// Where the text can be cut (above), searching forward from `from` for at most `reach`
+// bytes: false when there is no such place. find_cut: from the middle.
 struct Cut {
   std::size_t comma = 0, next = 0;
   ElementKind kind = kVertices;  // guessed from the keys of the element at `next`
 };
+bool find_cut_at(const char* text, std::size_t size, std::size_t from, std::size_t reach, Cut* cut);
 bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut);
 
 }  // namespace kintsugi::io

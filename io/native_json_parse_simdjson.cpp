@@ -6,10 +6,13 @@
 
 #include <simdjson.h>
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdint>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace kintsugi::io {
 
@@ -19,11 +22,13 @@ namespace {
 
 class SimdjsonTreeParser {
  public:
+  // `bytes`: the document's, for ElementSink::expect; 0 when the caller has told the sink
+  // how many elements come (a run of pieces counts them first).
   SimdjsonTreeParser(ElementSink* sink, JsonTree* root, std::size_t bytes) : sink_(sink), root_(root), bytes_(bytes) {}
 
-  // A whole document; with `continued` >= 0, the second half of a document cut inside
-  // that element array (native_json_parse.h: parse_native_simdjson_tail).
-  bool document(od::document& doc, int continued = -1) {
+  // A whole document; with `continued` >= 0, a piece of a document cut inside that element
+  // array (native_json_parse.h), whose elements before the cut were `first_index`.
+  bool document(od::document& doc, int continued = -1, std::size_t first_index = 0) {
     od::object top;
     if (doc.get_object().get(top)) return false;
     root_.reset();
@@ -39,8 +44,12 @@ class SimdjsonTreeParser {
       if (continued >= 0 && first) {
         // The stand-in "" holds the rest of the cut array; it is no member of the document.
         first = false;
-        if (!key.empty() || type != od::json_type::array || !elements(v, ElementKind(continued), false)) return false;
-        continued_count_ = count_;
+        if (!key.empty() || type != od::json_type::array || !elements(v, ElementKind(continued), false, first_index))
+          return false;
+        continued_count_ = count_ - first_index;
+        // Until another member follows, the piece ends inside this array.
+        last_kind_ = continued;
+        last_count_ = count_;
         continue;
       }
       first = false;
@@ -62,7 +71,7 @@ class SimdjsonTreeParser {
   }
 
   // The last member of the top level, if it was an element array: its kind (else -1) and
-  // its number of elements.
+  // its number of elements (for the stand-in "", counted from the array's start).
   int last_kind() const { return last_kind_; }
   std::size_t last_count() const { return last_count_; }
   // For a second half: the number of elements in the stand-in.
@@ -98,8 +107,8 @@ class SimdjsonTreeParser {
   }
 
   // An element array: an empty stand-in in the top level (`stand_in`); each element
-  // built alone.
-  bool elements(od::value& v, ElementKind kind, bool stand_in = true) {
+  // built alone, numbered from `first_index`.
+  bool elements(od::value& v, ElementKind kind, bool stand_in = true, std::size_t first_index = 0) {
     if (stand_in) {
       root_.open_array();
       root_.close();
@@ -107,8 +116,8 @@ class SimdjsonTreeParser {
     od::array a;
     std::size_t count = 0;
     if (v.get_array().get(a) || a.count_elements().get(count)) return false;
-    sink_->expect(kind, count, bytes_);
-    std::size_t index = 0;
+    if (bytes_) sink_->expect(kind, count, bytes_);
+    std::size_t index = first_index;
     for (auto item : a) {
       od::value e;
       if (std::move(item).get(e)) return false;
@@ -226,36 +235,146 @@ class SimdjsonTreeParser {
 
 std::size_t simdjson_padding() { return simdjson::SIMDJSON_PADDING; }
 
-FastParse parse_native_simdjson(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
-                                JsonTree* root) {
-  od::parser parser;
-  od::document doc;
-  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
-  SimdjsonTreeParser p(sink, root, size);
-  return p.document(doc) ? FastParse::kDone : FastParse::kUseReference;
+FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t capacity, ElementSink* sink,
+                                JsonTree* root, std::size_t piece_bytes) {
+  Run run;
+  run.end = size;
+  run.piece_bytes = piece_bytes;
+  RunEnds ends;
+  return parse_native_simdjson_run(text, size, capacity, run, sink, root, &ends);
 }
 
-FastParse parse_native_simdjson_head(const char* data, std::size_t size, std::size_t capacity, ElementSink* sink,
-                                     JsonTree* root, ElementKind* cut, std::size_t* count) {
-  od::parser parser;
-  od::document doc;
-  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
-  SimdjsonTreeParser p(sink, root, size);
-  if (!p.document(doc) || p.last_kind() < 0) return FastParse::kUseReference;
-  *cut = ElementKind(p.last_kind());
-  *count = p.last_count();
-  return FastParse::kDone;
+namespace {
+
+// One piece of a run: text[begin, end), continuing array `continued` (or -1); `cut`, where
+// the next piece starts, if `more`.
+struct Piece {
+  std::size_t begin = 0, end = 0;
+  bool more = false;
+  Cut cut;
+};
+
+// A piece as simdjson reads it: in place when it is the whole text (which has its padding),
+// else copied into `buffer` with the stand-in's brackets.
+class PieceReader {
+ public:
+  PieceReader(const char* text, std::size_t size, std::size_t capacity) : text_(text), size_(size), capacity_(capacity) {}
+
+  // Parses the piece into `doc`; its length with the brackets in `n`.
+  bool iterate(const Piece& piece, od::document* doc, std::size_t* n) {
+    static constexpr std::string_view kOpen = "{\"\":[", kClose = "]}";
+    const bool opens = piece.begin > 0, closes = piece.end < size_;
+    *n = piece.end - piece.begin;
+    if (!opens && !closes) return !parser_.iterate(simdjson::padded_string_view(text_, size_, capacity_)).get(*doc);
+    *n += (opens ? kOpen.size() : 0) + (closes ? kClose.size() : 0);
+    const std::size_t padded = *n + simdjson_padding();
+    if (buffer_.size() < padded) buffer_.resize(padded);
+    char* out = buffer_.data();
+    if (opens) out = std::copy(kOpen.begin(), kOpen.end(), out);
+    out = std::copy(text_ + piece.begin, text_ + piece.end, out);
+    if (closes) out = std::copy(kClose.begin(), kClose.end(), out);
+    std::fill(out, buffer_.data() + buffer_.size(), ' ');
+    return !parser_.iterate(simdjson::padded_string_view(buffer_.data(), *n, buffer_.size())).get(*doc);
+  }
+
+ private:
+  const char* text_;
+  std::size_t size_, capacity_;
+  od::parser parser_;         // its index is sized for the largest piece, and reused
+  std::vector<char> buffer_;  // reused
+};
+
+// Adds the elements of each element array (and of the stand-in "") of a piece to `counts`.
+bool count_elements(od::document& doc, int continued, std::array<std::size_t, kElementKinds>* counts) {
+  od::object top;
+  if (doc.get_object().get(top)) return false;
+  bool first = true;
+  for (auto member : top) {
+    od::field field;
+    if (std::move(member).get(field)) return false;
+    std::string_view key;
+    if (field.unescaped_key().get(key)) return false;
+    int kind = -1;
+    if (first && continued >= 0) {
+      kind = continued;
+    } else {
+      for (int k = 0; k < kElementKinds; ++k)
+        if (key == kElementKeys[k]) kind = k;
+    }
+    first = false;
+    if (kind < 0) continue;
+    od::value v = field.value();
+    od::json_type type;
+    if (v.type().get(type)) return false;
+    if (type != od::json_type::array) continue;
+    od::array a;
+    std::size_t n = 0;
+    if (v.get_array().get(a) || a.count_elements().get(n)) return false;
+    (*counts)[std::size_t(kind)] += n;
+  }
+  return true;
 }
 
-FastParse parse_native_simdjson_tail(const char* data, std::size_t size, std::size_t capacity, ElementKind cut,
-                                     ElementSink* sink, JsonTree* root, std::size_t* count) {
-  od::parser parser;
+}  // namespace
+
+FastParse parse_native_simdjson_run(const char* text, std::size_t size, std::size_t capacity, const Run& run,
+                                    ElementSink* sink, JsonTree* root, RunEnds* ends) {
+  // The pieces, each ending at the first cut past piece_bytes from its start.
+  std::vector<Piece> pieces;
+  for (std::size_t pos = run.begin;;) {
+    Piece piece;
+    piece.begin = pos;
+    const std::size_t from = pos + std::max<std::size_t>(run.piece_bytes, 1);
+    piece.more = from < run.end && find_cut_at(text, run.end, from, run.end - from, &piece.cut);
+    piece.end = piece.more ? piece.cut.comma : run.end;
+    pieces.push_back(piece);
+    if (!piece.more) break;
+    pos = piece.cut.next;
+  }
+  PieceReader reader(text, size, capacity);
   od::document doc;
-  if (parser.iterate(simdjson::padded_string_view(data, size, capacity)).get(doc)) return FastParse::kUseReference;
-  SimdjsonTreeParser p(sink, root, size);
-  if (!p.document(doc, int(cut))) return FastParse::kUseReference;
-  *count = p.continued_count();
-  return FastParse::kDone;
+  std::size_t n = 0;
+  // Several pieces: their elements counted first, so that the sink makes room for them
+  // once (a description grown as it is filled is copied, and fresh memory is most of the
+  // cost of reading). One piece: its parser tells the sink as it goes.
+  const bool counted = pieces.size() > 1;
+  if (counted) {
+    std::array<std::size_t, kElementKinds> counts{};
+    int continued = run.continued;
+    for (const Piece& piece : pieces) {
+      if (!reader.iterate(piece, &doc, &n) || !count_elements(doc, continued, &counts)) return FastParse::kUseReference;
+      continued = int(piece.cut.kind);
+    }
+    for (int k = 0; k < kElementKinds; ++k)
+      if (counts[std::size_t(k)]) sink->expect(ElementKind(k), counts[std::size_t(k)], run.end - run.begin);
+  }
+  JsonTree piece_root, joined;
+  int continued = run.continued;
+  std::size_t carried = 0;   // elements of the continued array in this run before the piece
+  for (const Piece& piece : pieces) {
+    if (!reader.iterate(piece, &doc, &n)) return FastParse::kUseReference;
+    const bool first = piece.begin == run.begin;
+    SimdjsonTreeParser p(sink, first ? root : &piece_root, counted ? 0 : n);
+    if (!p.document(doc, continued, carried)) return FastParse::kUseReference;
+    if (first) {
+      ends->first_count = p.continued_count();
+    } else {
+      // The piece's members after the ones before it.
+      if (!join_objects(JsonView(root, 0), JsonView(&piece_root, 0), &joined)) return FastParse::kUseReference;
+      std::swap(*root, joined);
+    }
+    if (!piece.more) {
+      ends->last_kind = p.last_kind();
+      ends->last_count = p.last_count();
+      return FastParse::kDone;
+    }
+    // The piece ends inside an element array of the kind guessed for the next one, with
+    // an element before the cut.
+    if (p.last_kind() != int(piece.cut.kind) || p.last_count() == 0) return FastParse::kUseReference;
+    continued = int(piece.cut.kind);
+    carried = p.last_count();
+  }
+  return FastParse::kUseReference;  // not reached: the last piece has no `more`
 }
 
 }  // namespace kintsugi::io

@@ -326,12 +326,16 @@ class DocumentReader final : public ElementSink {
     // {"id":0,"shell":0,"loops":[0],"same_sense":true} and {"id":0,"genus":0}.
     static constexpr std::size_t kShortest[kElementKinds] = {24, 75, 17, 45, 18};
     count = std::min(count, bytes / kShortest[kind]);
+    auto more = [count](auto& v) {
+      // At least doubling, should a parser tell a piece at a time (as pushing would).
+      if (v.capacity() - v.size() < count) v.reserve(std::max(v.size() + count, 2 * v.capacity()));
+    };
     switch (kind) {
-      case kVertices: d_.vertices.reserve(count); break;
-      case kEdges: d_.edges.reserve(count); break;
-      case kLoops: d_.loops.reserve(count); break;
-      case kFaces: d_.faces.reserve(count); break;
-      case kShells: d_.shells.reserve(count); break;
+      case kVertices: more(d_.vertices); break;
+      case kEdges: more(d_.edges); break;
+      case kLoops: more(d_.loops); break;
+      case kFaces: more(d_.faces); break;
+      case kShells: more(d_.shells); break;
       case kElementKinds: break;
     }
   }
@@ -1070,19 +1074,6 @@ class DocumentReader final : public ElementSink {
   }
 };
 
-// The top level of a document read in two halves: the first half's members, then the
-// second's. False if a key is in both (the whole text has it twice).
-bool join_top_levels(JsonView head, JsonView tail, JsonTree* out) {
-  JsonTreeBuilder b(out);
-  b.reset();
-  b.open_object();
-  for (JsonView half : {head, tail})
-    for (JsonView m = half.first(); m; m = m.next())
-      if (!b.key(m.key()) || !b.copy(m)) return false;
-  b.close();
-  return true;
-}
-
 // Documents from this size on are read in two halves at once, where two threads may be
 // used (KINTSUGI_THREADS, else the machine's).
 constexpr std::size_t kHalvesFromBytes = std::size_t(8) << 20;
@@ -1099,27 +1090,33 @@ bool read_in_halves(std::size_t size, NativeParser which) {
 // memory together.
 std::optional<NativeDocument> parse_document(char* text, std::size_t size, std::size_t capacity, NativeParser which,
                                              std::string* error, const std::function<void()>& release = {}) {
+  // The tests and the fuzzer cut a document at every element (of their small documents).
+  const std::size_t pieces = which == NativeParser::kSimdjsonHalves ? 1 : Run{}.piece_bytes;
   try {
     if (read_in_halves(size, which)) {
       DocumentReader head(error), tail(error);
       JsonTree head_root, tail_root, root;
       ElementKind cut;
       std::size_t head_count = 0;
-      if (parse_native_simdjson_halves(text, size, capacity, &head, &head_root, &tail, &tail_root, &cut, &head_count) ==
+      if (parse_native_simdjson_halves(text, size, capacity, &head, &head_root, &tail, &tail_root, &cut, &head_count,
+                                       pieces) ==
               FastParse::kDone &&
-          head.absorb(std::move(tail), cut) && join_top_levels(JsonView(&head_root, 0), JsonView(&tail_root, 0), &root)) {
+          head.absorb(std::move(tail), cut) && join_objects(JsonView(&head_root, 0), JsonView(&tail_root, 0), &root)) {
         if (release) release();
         return head.finish(JsonView(&root, 0));
       }
     }
-    if (which != NativeParser::kReferenceOnly) {
-      DocumentReader reader(error);
-      JsonTree root;
-      if (parse_native_simdjson(text, size, capacity, &reader, &root) == FastParse::kDone) {
-        if (release) release();
-        return reader.finish(JsonView(&root, 0));
+    // In pieces, then (a cut that is no place between elements: a large `meta` on lines of
+    // its own) whole.
+    if (which != NativeParser::kReferenceOnly)
+      for (std::size_t piece : {pieces, size}) {
+        DocumentReader reader(error);
+        JsonTree root;
+        if (parse_native_simdjson(text, size, capacity, &reader, &root, piece) == FastParse::kDone) {
+          if (release) release();
+          return reader.finish(JsonView(&root, 0));
+        }
       }
-    }
     DocumentReader reader(error);
     BoundedDocumentBuilder builder(&reader);
     if (!json::sax_parse(text, text + size, &builder)) {
