@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <array>
+#include <condition_variable>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <string_view>
 #include <thread>
 #include <utility>
@@ -83,6 +85,33 @@ FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::
   first.end = c.comma;
   second.begin = c.next, second.end = size, second.continued = int(c.kind);
   first.piece_bytes = second.piece_bytes = piece_bytes;
+  // The first half's descriptions make room for the second's, which are appended to them
+  // (DocumentReader::absorb): the second half tells its counts once it has them (zeros if
+  // it stops first), and the first waits for them before its elements.
+  struct {
+    std::mutex mutex;
+    std::condition_variable told;
+    bool ready = false;
+    ElementCounts counts{};
+    void tell(const ElementCounts& c) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (ready) return;
+      counts = c;
+      ready = true;
+      told.notify_all();
+    }
+  } second_counts;
+  second.room = [&](const ElementCounts& mine) {
+    second_counts.tell(mine);
+    return mine;
+  };
+  first.room = [&](const ElementCounts& mine) {
+    std::unique_lock<std::mutex> lock(second_counts.mutex);
+    second_counts.told.wait(lock, [&] { return second_counts.ready; });
+    ElementCounts both = mine;
+    for (std::size_t k = 0; k < both.size(); ++k) both[k] += second_counts.counts[k];
+    return both;
+  };
   RunEnds first_ends, second_ends;
   FastParse tail_result = FastParse::kUseReference;
   std::exception_ptr tail_error;
@@ -92,6 +121,7 @@ FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::
     } catch (...) {
       tail_error = std::current_exception();
     }
+    second_counts.tell(ElementCounts{});  // if it stopped before counting
   });
   FastParse head_result = FastParse::kUseReference;
   std::exception_ptr head_error;

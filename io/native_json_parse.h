@@ -15,7 +15,9 @@
 
 #include "io/json_tree.h"
 
+#include <array>
 #include <cstddef>
+#include <functional>
 
 namespace kintsugi::io {
 
@@ -55,10 +57,17 @@ std::size_t simdjson_padding();
 //
 // A run is text[begin, end): begin is 0 or where an element starts after a cut (`continued`:
 // the kind of its array, else -1), end is the text's size or a cut's comma.
+using ElementCounts = std::array<std::size_t, kElementKinds>;
 struct Run {
   std::size_t begin = 0, end = 0;
   int continued = -1;
   std::size_t piece_bytes = std::size_t(1) << 20;  // each piece ends at the first cut past this
+  // A run of several pieces counts its elements first, so that the sink makes room for them
+  // once (a description grown as it is filled is copied, and on a virtual machine fresh
+  // memory is most of the cost of reading): this says how many to tell the sink of, given
+  // the run's counts (none: the counts). The halves make room in the first half's
+  // descriptions for the second's.
+  std::function<ElementCounts(const ElementCounts&)> room;
 };
 struct RunEnds {
   std::size_t first_count = 0;  // elements of the continued array in the run

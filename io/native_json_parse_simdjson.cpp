@@ -285,7 +285,7 @@ class PieceReader {
 };
 
 // Adds the elements of each element array (and of the stand-in "") of a piece to `counts`.
-bool count_elements(od::document& doc, int continued, std::array<std::size_t, kElementKinds>* counts) {
+bool count_elements(od::document& doc, int continued, ElementCounts* counts) {
   od::object top;
   if (doc.get_object().get(top)) return false;
   bool first = true;
@@ -334,17 +334,17 @@ FastParse parse_native_simdjson_run(const char* text, std::size_t size, std::siz
   PieceReader reader(text, size, capacity);
   od::document doc;
   std::size_t n = 0;
-  // Several pieces: their elements counted first, so that the sink makes room for them
-  // once (a description grown as it is filled is copied, and fresh memory is most of the
-  // cost of reading). One piece: its parser tells the sink as it goes.
+  // Several pieces: their elements counted first (Run::room). One piece: its parser tells
+  // the sink as it goes.
   const bool counted = pieces.size() > 1;
   if (counted) {
-    std::array<std::size_t, kElementKinds> counts{};
+    ElementCounts counts{};
     int continued = run.continued;
     for (const Piece& piece : pieces) {
       if (!reader.iterate(piece, &doc, &n) || !count_elements(doc, continued, &counts)) return FastParse::kUseReference;
       continued = int(piece.cut.kind);
     }
+    if (run.room) counts = run.room(counts);
     for (int k = 0; k < kElementKinds; ++k)
       if (counts[std::size_t(k)]) sink->expect(ElementKind(k), counts[std::size_t(k)], run.end - run.begin);
   }
