@@ -15,6 +15,7 @@
 #include <string_view>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace kintsugi::io {
 
@@ -72,13 +73,42 @@ bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut) {
   return find_cut_at(text, size, size / 2, reach, cut);
 }
 
+bool find_cut_in(const TextSource& text, std::size_t from, std::size_t reach, Cut* cut) {
+  if (const char* whole = text.whole()) return find_cut_at(whole, text.size(), from, reach, cut);
+  // Windows of 64 KiB, each read with 64 bytes before it (the white space before a line
+  // break) and 512 after it (the white space after, and the next element's keys).
+  static constexpr std::size_t kWindow = std::size_t(64) << 10, kBefore = 64, kAfter = 512;
+  const std::size_t size = text.size(), end = from + std::min(reach, size - std::min(size, from));
+  std::vector<char> buffer;
+  for (std::size_t lo = from; lo < end; lo += kWindow) {
+    const std::size_t start = lo - std::min(lo, kBefore), stop = std::min(size, lo + kWindow + kAfter);
+    buffer.resize(stop - start);
+    if (!text.read(start, stop - start, buffer.data())) return false;
+    Cut c;
+    if (find_cut_at(buffer.data(), stop - start, lo - start, std::min(kWindow, end - lo), &c)) {
+      *cut = c;
+      cut->comma += start, cut->next += start;
+      return true;
+    }
+  }
+  return false;
+}
+
 FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::size_t capacity, ElementSink* head,
                                        JsonTree* head_root, ElementSink* tail, JsonTree* tail_root, ElementKind* cut,
                                        std::size_t* head_count, std::size_t piece_bytes) {
+  return parse_native_simdjson_halves(MemorySource(text, size, capacity), head, head_root, tail, tail_root, cut,
+                                      head_count, piece_bytes);
+}
+
+FastParse parse_native_simdjson_halves(const TextSource& text, ElementSink* head, JsonTree* head_root, ElementSink* tail,
+                                       JsonTree* tail_root, ElementKind* cut, std::size_t* head_count,
+                                       std::size_t piece_bytes) {
+  const std::size_t size = text.size();
   Cut c;
   // Elements are short: an element boundary within a few megabytes of the middle, or the
   // middle is in something else (meta, one huge element) and one thread reads it all.
-  if (!find_cut(text, size, std::size_t(4) << 20, &c)) return FastParse::kUseReference;
+  if (!find_cut_in(text, size / 2, std::size_t(4) << 20, &c)) return FastParse::kUseReference;
 
   // The second half on its own thread, the first here.
   Run first, second;
@@ -117,7 +147,7 @@ FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::
   std::exception_ptr tail_error;
   std::thread thread([&] {
     try {
-      tail_result = parse_native_simdjson_run(text, size, capacity, second, tail, tail_root, &second_ends);
+      tail_result = parse_native_simdjson_run(text, second, tail, tail_root, &second_ends);
     } catch (...) {
       tail_error = std::current_exception();
     }
@@ -126,7 +156,7 @@ FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::
   FastParse head_result = FastParse::kUseReference;
   std::exception_ptr head_error;
   try {
-    head_result = parse_native_simdjson_run(text, size, capacity, first, head, head_root, &first_ends);
+    head_result = parse_native_simdjson_run(text, first, head, head_root, &first_ends);
   } catch (...) {
     head_error = std::current_exception();
   }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "io/json_tree.h"
+#include "io/text_source.h"
 
 #include <array>
 #include <cstddef>
@@ -74,15 +75,18 @@ struct RunEnds {
   int last_kind = -1;           // the run's last member, if an element array: its kind
   std::size_t last_count = 0;   // ... and its elements in the run
 };
-// Parses a run of text[0, size) — with simdjson_padding() readable bytes past `size` up to
-// `capacity` — delivering elements to `sink` (the continued array's from index 0, each
-// array's in order) and building the rest of the run's top level in `root` (element arrays
-// there but empty). On kUseReference the sink may have seen some elements already: the
-// caller starts again from scratch.
-FastParse parse_native_simdjson_run(const char* text, std::size_t size, std::size_t capacity, const Run& run,
-                                    ElementSink* sink, JsonTree* root, RunEnds* ends);
+// Parses a run of `text` (io/text_source.h), delivering elements to `sink` (the continued
+// array's from index 0, each array's in order) and building the rest of the run's top
+// level in `root` (element arrays there but empty). On kUseReference the sink may have seen
+// some elements already: the caller starts again from scratch.
+FastParse parse_native_simdjson_run(const TextSource& text, const Run& run, ElementSink* sink, JsonTree* root,
+                                    RunEnds* ends);
 
 // A whole document, as one run of pieces of `piece_bytes`.
+FastParse parse_native_simdjson(const TextSource& text, ElementSink* sink, JsonTree* root,
+                                std::size_t piece_bytes = Run{}.piece_bytes);
+// The same of text[0, size) in memory, with simdjson_padding() readable bytes past `size`
+// up to `capacity`.
 FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t capacity, ElementSink* sink,
                                 JsonTree* root, std::size_t piece_bytes = Run{}.piece_bytes);
 
@@ -96,6 +100,9 @@ FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t 
 // top level), of the second to `tail` (their indices counted from 0 in the cut array; the
 // caller merges the two top levels and must refuse a key that both have). *cut: the array
 // cut; *head_count: its elements in the first half.
+FastParse parse_native_simdjson_halves(const TextSource& text, ElementSink* head, JsonTree* head_root, ElementSink* tail,
+                                       JsonTree* tail_root, ElementKind* cut, std::size_t* head_count,
+                                       std::size_t piece_bytes = Run{}.piece_bytes);
 FastParse parse_native_simdjson_halves(const char* text, std::size_t size, std::size_t capacity, ElementSink* head,
                                        JsonTree* head_root, ElementSink* tail, JsonTree* tail_root, ElementKind* cut,
                                        std::size_t* head_count, std::size_t piece_bytes = Run{}.piece_bytes);
@@ -108,5 +115,8 @@ struct Cut {
 };
 bool find_cut_at(const char* text, std::size_t size, std::size_t from, std::size_t reach, Cut* cut);
 bool find_cut(const char* text, std::size_t size, std::size_t reach, Cut* cut);
+// The same in a source not in memory, read a window at a time (a line break with more white
+// space around it than the window holds is passed over: the cut is a guess either way).
+bool find_cut_in(const TextSource& text, std::size_t from, std::size_t reach, Cut* cut);
 
 }  // namespace kintsugi::io

@@ -235,13 +235,17 @@ class SimdjsonTreeParser {
 
 std::size_t simdjson_padding() { return simdjson::SIMDJSON_PADDING; }
 
-FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t capacity, ElementSink* sink,
-                                JsonTree* root, std::size_t piece_bytes) {
+FastParse parse_native_simdjson(const TextSource& text, ElementSink* sink, JsonTree* root, std::size_t piece_bytes) {
   Run run;
-  run.end = size;
+  run.end = text.size();
   run.piece_bytes = piece_bytes;
   RunEnds ends;
-  return parse_native_simdjson_run(text, size, capacity, run, sink, root, &ends);
+  return parse_native_simdjson_run(text, run, sink, root, &ends);
+}
+
+FastParse parse_native_simdjson(const char* text, std::size_t size, std::size_t capacity, ElementSink* sink,
+                                JsonTree* root, std::size_t piece_bytes) {
+  return parse_native_simdjson(MemorySource(text, size, capacity), sink, root, piece_bytes);
 }
 
 namespace {
@@ -254,32 +258,34 @@ struct Piece {
   Cut cut;
 };
 
-// A piece as simdjson reads it: in place when it is the whole text (which has its padding),
-// else copied into `buffer` with the stand-in's brackets.
+// A piece as simdjson reads it: in place when it is the whole text in memory (which has its
+// padding), else copied into `buffer` with the stand-in's brackets.
 class PieceReader {
  public:
-  PieceReader(const char* text, std::size_t size, std::size_t capacity) : text_(text), size_(size), capacity_(capacity) {}
+  explicit PieceReader(const TextSource& text) : text_(text), size_(text.size()) {}
 
   // Parses the piece into `doc`; its length with the brackets in `n`.
   bool iterate(const Piece& piece, od::document* doc, std::size_t* n) {
     static constexpr std::string_view kOpen = "{\"\":[", kClose = "]}";
     const bool opens = piece.begin > 0, closes = piece.end < size_;
     *n = piece.end - piece.begin;
-    if (!opens && !closes) return !parser_.iterate(simdjson::padded_string_view(text_, size_, capacity_)).get(*doc);
+    if (!opens && !closes && text_.whole())
+      return !parser_.iterate(simdjson::padded_string_view(text_.whole(), size_, text_.capacity())).get(*doc);
     *n += (opens ? kOpen.size() : 0) + (closes ? kClose.size() : 0);
     const std::size_t padded = *n + simdjson_padding();
     if (buffer_.size() < padded) buffer_.resize(padded);
     char* out = buffer_.data();
     if (opens) out = std::copy(kOpen.begin(), kOpen.end(), out);
-    out = std::copy(text_ + piece.begin, text_ + piece.end, out);
+    if (!text_.read(piece.begin, piece.end - piece.begin, out)) return false;
+    out += piece.end - piece.begin;
     if (closes) out = std::copy(kClose.begin(), kClose.end(), out);
     std::fill(out, buffer_.data() + buffer_.size(), ' ');
     return !parser_.iterate(simdjson::padded_string_view(buffer_.data(), *n, buffer_.size())).get(*doc);
   }
 
  private:
-  const char* text_;
-  std::size_t size_, capacity_;
+  const TextSource& text_;
+  std::size_t size_;
   od::parser parser_;         // its index is sized for the largest piece, and reused
   std::vector<char> buffer_;  // reused
 };
@@ -317,21 +323,21 @@ bool count_elements(od::document& doc, int continued, ElementCounts* counts) {
 
 }  // namespace
 
-FastParse parse_native_simdjson_run(const char* text, std::size_t size, std::size_t capacity, const Run& run,
-                                    ElementSink* sink, JsonTree* root, RunEnds* ends) {
+FastParse parse_native_simdjson_run(const TextSource& text, const Run& run, ElementSink* sink, JsonTree* root,
+                                    RunEnds* ends) {
   // The pieces, each ending at the first cut past piece_bytes from its start.
   std::vector<Piece> pieces;
   for (std::size_t pos = run.begin;;) {
     Piece piece;
     piece.begin = pos;
     const std::size_t from = pos + std::max<std::size_t>(run.piece_bytes, 1);
-    piece.more = from < run.end && find_cut_at(text, run.end, from, run.end - from, &piece.cut);
+    piece.more = from < run.end && find_cut_in(text, from, run.end - from, &piece.cut) && piece.cut.next < run.end;
     piece.end = piece.more ? piece.cut.comma : run.end;
     pieces.push_back(piece);
     if (!piece.more) break;
     pos = piece.cut.next;
   }
-  PieceReader reader(text, size, capacity);
+  PieceReader reader(text);
   od::document doc;
   std::size_t n = 0;
   // Several pieces: their elements counted first (Run::room). One piece: its parser tells

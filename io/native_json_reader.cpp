@@ -1078,45 +1078,72 @@ class DocumentReader final : public ElementSink {
 // used (KINTSUGI_THREADS, else the machine's).
 constexpr std::size_t kHalvesFromBytes = std::size_t(8) << 20;
 
+// Files from this size on are read a piece at a time rather than whole.
+constexpr std::size_t kStreamFromBytes = std::size_t(8) << 20;
+
 bool read_in_halves(std::size_t size, NativeParser which) {
   if (which == NativeParser::kSimdjsonHalves) return true;
   return which == NativeParser::kSimdjsonFirst && size >= kHalvesFromBytes && threads_from_environment() >= 2;
 }
 
-// The whole reader over text[0, size), with simdjson_padding() readable bytes past the
-// end of the text (`capacity` is the whole buffer; the text is changed while it is read
-// in halves, and put back). `release` (if given) frees the text: called once it has been
-// parsed, before the body is assembled, so that the text and the body are never in
-// memory together.
-std::optional<NativeDocument> parse_document(char* text, std::size_t size, std::size_t capacity, NativeParser which,
-                                             std::string* error, const std::function<void()>& release = {}) {
+// The fast reader in pieces (io/native_json_parse.h): `decided` once a parse has run to its
+// end, with the document or the refusal of its elements (`error`); not when a parse gave
+// up, and the caller reads the text another way. `release` (if given) frees the text:
+// called once it has been parsed, before the body is assembled, so that the text and the
+// body are never in memory together.
+struct Attempt {
+  bool decided = false;
+  std::optional<NativeDocument> doc;
+};
+Attempt parse_in_pieces(const TextSource& text, NativeParser which, std::string* error,
+                        const std::function<void()>& release) {
+  Attempt out;
+  if (which == NativeParser::kReferenceOnly) return out;
   // The tests and the fuzzer cut a document at every element (of their small documents).
   const std::size_t pieces = which == NativeParser::kSimdjsonHalves ? 1 : Run{}.piece_bytes;
+  if (read_in_halves(text.size(), which)) {
+    DocumentReader head(error), tail(error);
+    JsonTree head_root, tail_root, root;
+    ElementKind cut;
+    std::size_t head_count = 0;
+    if (parse_native_simdjson_halves(text, &head, &head_root, &tail, &tail_root, &cut, &head_count, pieces) ==
+            FastParse::kDone &&
+        head.absorb(std::move(tail), cut) && join_objects(JsonView(&head_root, 0), JsonView(&tail_root, 0), &root)) {
+      if (release) release();
+      out.decided = true;
+      out.doc = head.finish(JsonView(&root, 0));
+      return out;
+    }
+  }
+  DocumentReader reader(error);
+  JsonTree root;
+  if (parse_native_simdjson(text, &reader, &root, pieces) == FastParse::kDone) {
+    if (release) release();
+    out.decided = true;
+    out.doc = reader.finish(JsonView(&root, 0));
+  }
+  return out;
+}
+
+// The whole reader over text[0, size), with simdjson_padding() readable bytes past the
+// end of the text (`capacity` is the whole buffer): in pieces (unless `pieces_tried`),
+// then whole (a cut that is no place between elements: a large `meta` on lines of its
+// own), then the reference parser.
+std::optional<NativeDocument> parse_document(const char* text, std::size_t size, std::size_t capacity, NativeParser which,
+                                             std::string* error, const std::function<void()>& release = {},
+                                             bool pieces_tried = false) {
   try {
-    if (read_in_halves(size, which)) {
-      DocumentReader head(error), tail(error);
-      JsonTree head_root, tail_root, root;
-      ElementKind cut;
-      std::size_t head_count = 0;
-      if (parse_native_simdjson_halves(text, size, capacity, &head, &head_root, &tail, &tail_root, &cut, &head_count,
-                                       pieces) ==
-              FastParse::kDone &&
-          head.absorb(std::move(tail), cut) && join_objects(JsonView(&head_root, 0), JsonView(&tail_root, 0), &root)) {
+    const MemorySource source(text, size, capacity);
+    if (!pieces_tried)
+      if (Attempt a = parse_in_pieces(source, which, error, release); a.decided) return std::move(a.doc);
+    if (which != NativeParser::kReferenceOnly) {
+      DocumentReader reader(error);
+      JsonTree root;
+      if (parse_native_simdjson(source, &reader, &root, size) == FastParse::kDone) {
         if (release) release();
-        return head.finish(JsonView(&root, 0));
+        return reader.finish(JsonView(&root, 0));
       }
     }
-    // In pieces, then (a cut that is no place between elements: a large `meta` on lines of
-    // its own) whole.
-    if (which != NativeParser::kReferenceOnly)
-      for (std::size_t piece : {pieces, size}) {
-        DocumentReader reader(error);
-        JsonTree root;
-        if (parse_native_simdjson(text, size, capacity, &reader, &root, piece) == FastParse::kDone) {
-          if (release) release();
-          return reader.finish(JsonView(&root, 0));
-        }
-      }
     DocumentReader reader(error);
     BoundedDocumentBuilder builder(&reader);
     if (!json::sax_parse(text, text + size, &builder)) {
@@ -1209,11 +1236,28 @@ std::optional<NativeDocument> read_native_file(const std::string& path, std::str
     return refuse("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                   std::to_string(kMaxNativeBytes) + "; refusing to read it");
   std::size_t hint = S_ISREG(st.st_mode) ? std::size_t(st.st_size) : std::size_t(1) << 16;
+  // A large regular file is read a piece at a time, never whole (io/text_source.h); the
+  // whole text is read only when the pieces give up.
+  bool pieces_tried = false;
+  if (S_ISREG(st.st_mode) && hint >= kStreamFromBytes && which != NativeParser::kReferenceOnly) {
+    std::string why;
+    try {
+      Attempt a = parse_in_pieces(FileSource(fd, hint), which, &why, {});
+      if (a.decided) {
+        if (!a.doc) return refuse(why);
+        return std::move(a.doc);
+      }
+    } catch (const std::exception& e) {
+      return refuse(std::string("cannot read the document: ") + e.what());
+    }
+    pieces_tried = true;
+  }
   FileText text(fd, hint);
   if (text.read_errno) return refuse(std::string("cannot read: ") + std::strerror(text.read_errno));
   if (text.too_large) return refuse("is more than " + std::to_string(kMaxNativeBytes) + " bytes; refusing to read it");
   std::string why;
-  auto doc = parse_document(text.bytes.get(), text.size, text.capacity, which, &why, [&] { text.bytes.reset(); });
+  auto doc = parse_document(text.bytes.get(), text.size, text.capacity, which, &why, [&] { text.bytes.reset(); },
+                            pieces_tried && text.size == hint);
   if (!doc) return refuse(why);
   return doc;
 }

@@ -9,7 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <array>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,6 +104,87 @@ TEST(NativeReaderPieces, ADuplicateKeyInTwoPiecesIsRefused) {
   text.insert(text.rfind("\n}"), ",\n  \"units\": \"mm\"");
   EXPECT_EQ(parse(text, text.size()).result, FastParse::kUseReference);
   EXPECT_EQ(parse(text, 64).result, FastParse::kUseReference);
+}
+
+// The text in memory, as a file would give it: a window at a time, never whole.
+struct Windowed final : TextSource {
+  const std::string& text;
+  explicit Windowed(const std::string& t) : text(t) {}
+  std::size_t size() const override { return text.size(); }
+  bool read(std::size_t begin, std::size_t n, char* out) const override {
+    if (begin > text.size() || n > text.size() - begin) return false;
+    text.copy(out, n, begin);
+    return true;
+  }
+};
+
+TEST(NativeReaderPieces, CutsFoundAWindowAtATimeAreTheCutsOfTheWholeText) {
+  zoo::ZooModel m = zoo::family(300, 0.3, 6);
+  const std::string text = write_native(m.body, m.meta(), "mm");
+  const MemorySource memory(text.data(), text.size(), text.size());
+  const Windowed windowed(text);
+  int found = 0;
+  for (std::size_t from = 0; from < text.size(); from += 97) {
+    Cut a, b;
+    const bool in_memory = find_cut_in(memory, from, text.size(), &a);
+    ASSERT_EQ(find_cut_in(windowed, from, text.size(), &b), in_memory) << from;
+    if (!in_memory) continue;
+    ++found;
+    EXPECT_EQ(a.comma, b.comma) << from;
+    EXPECT_EQ(a.next, b.next) << from;
+    EXPECT_EQ(a.kind, b.kind) << from;
+  }
+  EXPECT_GT(found, 1000);
+}
+
+TEST(NativeReaderPieces, ALargeFileIsReadAPieceAtATimeAsTheReferenceReadsIt) {
+  // About 10 MB: read from the file a piece at a time (past 8 MB), in two halves.
+  zoo::ZooModel m = zoo::family(12000, 0.1, 3);
+  const std::string text = write_native(m.body, m.meta(), "mm");
+  ASSERT_GT(text.size(), std::size_t(8) << 20);
+  const std::string path = (std::filesystem::temp_directory_path() / "kintsugi_pieces_test.json").string();
+  auto read_file_as = [&](const std::string& t, NativeParser which, std::string* error) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    EXPECT_TRUE(f);
+    std::fwrite(t.data(), 1, t.size(), f);
+    std::fclose(f);
+    return read_native_file(path, error, which);
+  };
+  std::string error, reference_error;
+  auto fast = read_file_as(text, NativeParser::kSimdjsonFirst, &error);
+  {
+    // The file itself, a piece at a time: what the text in memory gives in one piece.
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    ASSERT_GE(fd, 0);
+    Parsed from_file;
+    JsonTree root;
+    from_file.result = parse_native_simdjson(FileSource(fd, text.size()), &from_file.sink, &root);
+    ::close(fd);
+    ASSERT_EQ(from_file.result, FastParse::kDone);
+    const Parsed whole = parse(text, text.size());
+    EXPECT_EQ(from_file.sink.elements, whole.sink.elements);
+    EXPECT_EQ(JsonView(&root, 0).dump(), whole.root);
+  }
+  auto reference = read_native(text, &reference_error, NativeParser::kReferenceOnly);
+  ASSERT_TRUE(fast) << error;
+  ASSERT_TRUE(reference) << reference_error;
+  std::string why;
+  EXPECT_TRUE(fast->body.equals(reference->body, &why)) << why;
+  EXPECT_EQ(fast->meta, reference->meta);
+  // A bad element in the second half, and broken JSON: refused in the whole text's words.
+  std::string bad_element = text;
+  const std::size_t last_face = text.rfind("{\"id\": ", text.find("\"shells\""));
+  bad_element.replace(last_face, 7, "{\"id\": -4, \"x\": ");
+  std::string broken = text;
+  broken.insert(text.size() * 3 / 4, "\"");
+  for (const std::string& t : {bad_element, broken}) {
+    std::string fast_error, whole_error;
+    EXPECT_FALSE(read_file_as(t, NativeParser::kSimdjsonFirst, &fast_error));
+    EXPECT_FALSE(read_file_as(t, NativeParser::kReferenceOnly, &whole_error));
+    EXPECT_EQ(fast_error, whole_error);
+    EXPECT_FALSE(fast_error.empty());
+  }
+  std::remove(path.c_str());
 }
 
 }  // namespace
