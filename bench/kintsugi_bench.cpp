@@ -90,6 +90,11 @@ int usage(std::ostream& os, int code) {
         "  io      Writes the scalable family with N faces (10..10000000) as native JSON, to a\n"
         "          string and (streamed, atomically) to a file in D, and reads the file back;\n"
         "          prints each step's time and peak memory (each step runs in a child process).\n"
+        "       kintsugi-bench read FILE\n"
+        "  read    Reads a native file in this process, as a fresh `kintsugi` process does (no\n"
+        "          fork from a process that holds a model: a child writing into its parent's\n"
+        "          freed heap pays a copy per page); prints the seconds and the peak memory.\n"
+        "          KINTSUGI_THREADS=1 reads on one thread.\n"
         "       kintsugi-bench beautify [--faces N,N,...] [--rate R] [--seed S] [--on-plate K] [--detect-only]\n"
         "  beautify  Detects and beautifies the scalable family at each size (default\n"
         "          10000,100000; rate 0.01), each in a child process, as `kintsugi beautify`\n"
@@ -117,6 +122,23 @@ nlohmann::ordered_json in_child(const std::function<std::string()>& step) {
     if (!error.empty()) return {{"error", error}};
     return {{"seconds", seconds_since(t0)}};
   });
+}
+
+int bench_read(int argc, char** argv) {
+  if (argc != 3 || std::strcmp(argv[2], "--help") == 0) return usage(argc == 3 ? std::cout : std::cerr, argc == 3 ? 0 : 2);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;
+  auto doc = kintsugi::io::read_native_file(argv[2], &error);
+  const double seconds = seconds_since(t0);
+  if (!doc) {
+    std::cerr << "kintsugi-bench read: " << error << "\n";
+    return 2;
+  }
+  const auto c = doc->body.counts();
+  nlohmann::ordered_json out = {{"file", argv[2]},           {"faces", c.faces},
+                                {"seconds", seconds},       {"peak_rss_bytes", peak_rss_bytes()}};
+  std::cout << out.dump() << "\n";
+  return 0;
 }
 
 int bench_io(int argc, char** argv) {
@@ -432,6 +454,7 @@ int bench_occt_heal(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) return usage(std::cout, 0);
   if (argc >= 2 && std::strcmp(argv[1], "io") == 0) return bench_io(argc, argv);
+  if (argc >= 2 && std::strcmp(argv[1], "read") == 0) return bench_read(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "beautify") == 0) return bench_beautify(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "occt-heal") == 0) return bench_occt_heal(argc, argv);
   if (argc == 2 && std::strcmp(argv[1], "solvers") == 0) return kintsugi::bench::bench_solvers();
