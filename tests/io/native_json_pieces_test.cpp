@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,16 @@ Parsed parse(const std::string& text, std::size_t piece_bytes) {
   return p;
 }
 
+// Both read, and the same document.
+void expect_same_document(const std::optional<NativeDocument>& fast, const std::string& error,
+                          const std::optional<NativeDocument>& reference, const std::string& reference_error) {
+  ASSERT_TRUE(fast) << error;
+  ASSERT_TRUE(reference) << reference_error;
+  std::string why;
+  EXPECT_TRUE(fast->body.equals(reference->body, &why)) << why;
+  EXPECT_EQ(fast->meta, reference->meta);
+}
+
 TEST(NativeReaderPieces, EveryPieceSizeReadsWhatOnePieceReads) {
   zoo::ZooModel m = zoo::family(120, 0.3, 4);
   nlohmann::json meta = m.meta();
@@ -90,11 +101,7 @@ TEST(NativeReaderPieces, ACutOutsideTheElementArraysReadsTheTextWhole) {
   std::string error, reference_error;
   auto fast = read_native(text, &error, NativeParser::kSimdjsonFirst);
   auto reference = read_native(text, &reference_error, NativeParser::kReferenceOnly);
-  ASSERT_TRUE(fast) << error;
-  ASSERT_TRUE(reference) << reference_error;
-  std::string why;
-  EXPECT_TRUE(fast->body.equals(reference->body, &why)) << why;
-  EXPECT_EQ(fast->meta, reference->meta);
+  expect_same_document(fast, error, reference, reference_error);
 }
 
 TEST(NativeReaderPieces, ADuplicateKeyInTwoPiecesIsRefused) {
@@ -166,11 +173,7 @@ TEST(NativeReaderPieces, ALargeFileIsReadAPieceAtATimeAsTheReferenceReadsIt) {
     EXPECT_EQ(JsonView(&root, 0).dump(), whole.root);
   }
   auto reference = read_native(text, &reference_error, NativeParser::kReferenceOnly);
-  ASSERT_TRUE(fast) << error;
-  ASSERT_TRUE(reference) << reference_error;
-  std::string why;
-  EXPECT_TRUE(fast->body.equals(reference->body, &why)) << why;
-  EXPECT_EQ(fast->meta, reference->meta);
+  expect_same_document(fast, error, reference, reference_error);
   // A bad element in the second half, and broken JSON: refused in the whole text's words.
   std::string bad_element = text;
   const std::size_t last_face = text.rfind("{\"id\": ", text.find("\"shells\""));
