@@ -9,10 +9,11 @@
 //   "/edges/3/he/1/next: refers to half-edge 99, which does not exist".
 // Problems with the document as a whole (too large, empty) have no pointer prefix.
 // It never crashes on input, never recurses deeper than a fixed nesting limit, and
-// allocates in proportion to the input, which is itself capped at 1 GiB: the text, the
-// parser's index of it (about the text's size again), a copy of the second half of a
-// large text (read on a second thread), one element at a time as a small tree per
-// thread, and the body it describes.
+// allocates in proportion to the input, which is itself capped at 1 GiB: a piece of the
+// text at a time (a megabyte; the whole text only when it cannot be cut, or comes from
+// memory), the parser's index of a piece, the descriptions of the elements (read straight
+// from the parser, or through a small tree per element for anything out of the common:
+// io/native_json_typed.h), and the body they describe.
 #pragma once
 
 #include "kernel/body.h"

@@ -1,7 +1,9 @@
 // The native reader's two parsers (internal to io/): both hand each element of the
 // top-level element arrays ("vertices" ... "shells") to an ElementSink as a JsonTree as
 // soon as it is complete, and build the rest of the document (the top level, `meta`) as
-// one more tree, whose element arrays are there but empty.
+// one more tree, whose element arrays are there but empty. The fast one reads the common
+// elements straight into the sink's descriptions instead, where the sink lets it
+// (ElementSink::direct, io/native_json_typed.h).
 //
 // simdjson's On-Demand parser (native_json_parse_simdjson.cpp) reads a document several
 // times faster than nlohmann's; it gives up (kUseReference) on anything out of the
@@ -15,12 +17,19 @@
 
 #include "io/json_tree.h"
 #include "io/text_source.h"
+#include "kernel/assemble.h"
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 
 namespace kintsugi::io {
+
+// The reader's bounds and tolerances (spec/file-format.md).
+inline constexpr std::uint64_t kMaxId = 0xFFFFFFFEu;      // 0xFFFFFFFF is the invalid handle
+inline constexpr std::uint64_t kMaxEdgeId = 0x7FFFFFFEu;  // its half-edges must be ids too
+inline constexpr double kUnitTolerance = 1e-9;            // unit length and perpendicularity
 
 // The element arrays, in the order the reader checks them.
 enum ElementKind { kVertices, kEdges, kLoops, kFaces, kShells, kElementKinds };
@@ -34,6 +43,13 @@ class ElementSink {
   // `count` more elements of array `kind` follow, in a piece of `bytes` of the document
   // (when the parser knows it before them).
   virtual void expect(ElementKind kind, std::size_t count, std::size_t bytes) = 0;
+
+  // Typed reading (io/native_json_typed.h): the descriptions the parser may append the
+  // next element of `kind` to itself, when it has read and checked it exactly as element()
+  // would have; null (the default): every element comes through element().
+  virtual BodyDescription* direct(ElementKind) { return nullptr; }
+  // Element `index` of `kind` was appended to direct(kind).
+  virtual void appended(ElementKind, std::size_t) {}
 };
 
 enum class FastParse { kDone, kUseReference };

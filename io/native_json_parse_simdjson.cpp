@@ -3,12 +3,12 @@
 #include "io/native_json_parse.h"
 
 #include "io/native_json.h"
+#include "io/native_json_typed.h"
 
 #include <simdjson.h>
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cstdint>
 #include <string_view>
 #include <utility>
@@ -122,10 +122,45 @@ class SimdjsonTreeParser {
       od::value e;
       if (std::move(item).get(e)) return false;
       element_.reset();
+      if (BodyDescription* direct = sink_->direct(kind)) {
+        // Typed reading (io/native_json_typed.h), else the element's object from its start
+        // as a tree.
+        od::json_type type;
+        if (e.type().get(type)) return false;
+        if (type == od::json_type::object) {
+          od::object o;
+          if (e.get_object().get(o)) return false;
+          const Typed typed = read_typed_element(o, kind, direct);
+          if (typed == Typed::kError) return false;
+          if (typed == Typed::kRead) {
+            sink_->appended(kind, index++);
+            continue;
+          }
+          bool nonempty = false;
+          if (o.reset().get(nonempty) || !members(o, element_, 2)) return false;
+          sink_->element(kind, index++, JsonView(&element_tree_, 0));
+          continue;
+        }
+      }
       if (!value(e, element_, 2)) return false;
       sink_->element(kind, index++, JsonView(&element_tree_, 0));
     }
     count_ = index;
+    return true;
+  }
+
+  // An object's members into `b` (as value() reads an object).
+  bool members(od::object& o, JsonTreeBuilder& b, std::size_t open) {
+    if (open >= kMaxNativeDepth) return false;
+    b.open_object();
+    for (auto member : o) {
+      od::field field;
+      std::string_view key;
+      if (std::move(member).get(field) || !key_of(field, &key) || !b.key(key)) return false;
+      od::value child = field.value();
+      if (!value(child, b, open + 1)) return false;
+    }
+    b.close();
     return true;
   }
 
@@ -137,17 +172,7 @@ class SimdjsonTreeParser {
       case od::json_type::object: {
         if (open >= kMaxNativeDepth) return false;
         od::object o;
-        if (v.get_object().get(o)) return false;
-        b.open_object();
-        for (auto member : o) {
-          od::field field;
-          std::string_view key;
-          if (std::move(member).get(field) || !key_of(field, &key) || !b.key(key)) return false;
-          od::value child = field.value();
-          if (!value(child, b, open + 1)) return false;
-        }
-        b.close();
-        return true;
+        return !v.get_object().get(o) && members(o, b, open);
       }
       case od::json_type::array: {
         if (open >= kMaxNativeDepth) return false;
@@ -184,48 +209,14 @@ class SimdjsonTreeParser {
     return false;
   }
 
-  // As nlohmann types numbers: with a fraction or exponent a double, else without a minus
-  // sign unsigned, with one signed ("-0" too). Through the typed getters: simdjson 3.0's
-  // get_number() reads a double of more than 19 digits as 0 (the json_reader fuzz target
-  // found it within seconds).
+  // As nlohmann types numbers (io/native_json_typed.h).
   bool number(od::value& v, JsonTreeBuilder& b) {
-    const bool negative = v.is_negative();
-    od::number_type type;
-    if (v.get_number_type().get(type)) return false;
-    switch (type) {
-      case od::number_type::floating_point_number: {
-        std::string_view token = v.raw_json_token();
-        while (!token.empty() && (token.back() == ' ' || token.back() == '\t' || token.back() == '\n' || token.back() == '\r'))
-          token.remove_suffix(1);
-        double d;
-        if (v.get_double().get(d)) return false;  // also: outside a double
-        // simdjson 3.0's portable kernel gets long mantissas wrong (0.444...4 of 110
-        // digits read as 1.4e-88: the json_reader fuzz target). Its fast path, up to 19
-        // digits, is exact; a longer number is read by from_chars, correctly rounded as
-        // nlohmann's strtod is, and whatever the locale. Past a double's range (an
-        // underflow simdjson let through) the reference parser decides.
-        if (token.size() > 19) {
-          auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), d);
-          if (ec != std::errc() || end != token.data() + token.size()) return false;
-        }
-        b.floating(d);
-        return true;
-      }
-      case od::number_type::signed_integer: {
-        std::int64_t i;
-        if (v.get_int64().get(i)) return false;
-        if (negative)
-          b.integer(i);
-        else
-          b.unsigned_integer(std::uint64_t(i));
-        return true;
-      }
-      case od::number_type::unsigned_integer: {
-        std::uint64_t u;
-        if (v.get_uint64().get(u)) return false;  // also: past 64 bits
-        b.unsigned_integer(u);
-        return true;
-      }
+    JsonNumber n;
+    if (!read_json_number(v, &n)) return false;
+    switch (n.type) {
+      case JsonNumber::kFloat: b.floating(n.d); return true;
+      case JsonNumber::kSigned: b.integer(n.i); return true;
+      case JsonNumber::kUnsigned: b.unsigned_integer(n.u); return true;
     }
     return false;
   }

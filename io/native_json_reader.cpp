@@ -269,10 +269,6 @@ class BoundedDocumentBuilder {
 
 // ---- validating reader --------------------------------------------------------------
 
-constexpr std::uint64_t kMaxId = 0xFFFFFFFEu;        // 0xFFFFFFFF is the invalid handle
-constexpr std::uint64_t kMaxEdgeId = 0x7FFFFFFEu;    // its half-edges must be ids too
-constexpr double kUnitTolerance = 1e-9;              // unit length and perpendicularity
-
 const char* const kUnits[] = {"nm", "um", "mm", "cm", "m", "in", "ft"};
 
 // One kind of element: ids → position in its array, for references and messages.
@@ -317,6 +313,11 @@ class DocumentReader final : public ElementSink {
       k.error = std::move(message_);
     }
   }
+
+  // Typed reading appends to the descriptions only until an element of its kind is refused:
+  // the ones after it are counted, not read (the refusal is the first, whatever follows).
+  BodyDescription* direct(ElementKind kind) override { return pending_[kind].failed ? nullptr : &d_; }
+  void appended(ElementKind kind, std::size_t i) override { pending_[kind].count = i + 1; }
 
   void expect(ElementKind kind, std::size_t count, std::size_t bytes) override {
     // Reserving the descriptions saves copying them as they grow (an EdgeDesc is large).

@@ -77,6 +77,41 @@ TEST(NativeReaderParsers, SimdjsonReadsOrdinaryDocumentsItself) {
   EXPECT_TRUE(simdjson_reads(nlohmann::json::parse(box_text()).dump()));
 }
 
+// How many elements the fast parser read typed (io/native_json_typed.h), how many as trees.
+struct TypedCount {
+  std::size_t typed = 0, trees = 0;
+};
+TypedCount typed_count(const std::string& text) {
+  struct Sink : ElementSink {
+    BodyDescription d;
+    TypedCount n;
+    void element(ElementKind, std::size_t, JsonView) override { ++n.trees; }
+    void expect(ElementKind, std::size_t, std::size_t) override {}
+    BodyDescription* direct(ElementKind) override { return &d; }
+    void appended(ElementKind, std::size_t) override { ++n.typed; }
+  } sink;
+  std::string padded = text + std::string(simdjson_padding(), ' ');
+  JsonTree root;
+  EXPECT_EQ(parse_native_simdjson(padded.data(), text.size(), padded.size(), &sink, &root), FastParse::kDone);
+  return sink.n;
+}
+
+TEST(NativeReaderParsers, TypedReadingTakesTheCommonElements) {
+  // Every element of the analytic solids and of the scalable family is read typed (else the
+  // agreement above would be the tree path agreeing with itself) ...
+  zoo::ZooModel m = zoo::family(300, 0.5, 3);
+  for (const std::string& t : {box_text(), write_native(build::cone(1, 2)), write_native(build::sphere(1)),
+                               write_native(build::torus(3, 1)), write_native(m.body, m.meta(), "mm")}) {
+    const TypedCount n = typed_count(t);
+    EXPECT_EQ(n.trees, 0u);
+    EXPECT_GE(n.typed, 5u);
+  }
+  // ... and an element it cannot read exactly as the tree path would goes that way, alone.
+  const TypedCount n = typed_count(replaced(box_text(), "\"type\": \"line\"", "\"type\": \"lin\\u0065\""));
+  EXPECT_EQ(n.trees, 1u);
+  EXPECT_EQ(n.typed + n.trees, typed_count(box_text()).typed);
+}
+
 TEST(NativeReaderParsers, SimdjsonLeavesTheOutOfTheOrdinaryToTheReference) {
   // Each of these the reference must read (or word the refusal of) itself.
   EXPECT_FALSE(simdjson_reads(box_text() + " x"));
@@ -138,6 +173,123 @@ TEST(NativeReaderParsers, AgreeOnJsonCornerCases) {
   cases.push_back(replaced(t, "\"seed\": 7", "\"seed\": " + many + "}"));
   cases.push_back(replaced(t, "\"seed\": 7", "\"seed\": " + many + ", \"k17\": 0}"));
   for (std::size_t i = 0; i < cases.size(); ++i) EXPECT_EQ(disagreement(cases[i]), "") << "case " << i << ":\n" << cases[i].substr(0, 300);
+}
+
+// Each check the reader makes of an element, one at a time, on documents of every kind of
+// analytic geometry: the fast parser reads most elements typed, without a tree
+// (io/native_json_typed.h), and must leave every one of these to the tree path, which
+// accepts or words the refusal as the reference does.
+TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
+  const std::string box = box_text(), cylinder = write_native(build::cylinder(1, 2)),
+                    cone = write_native(build::cone(1, 2)), sphere = write_native(build::sphere(1)),
+                    torus = write_native(build::torus(3, 1));
+  struct Edit {
+    const std::string* text;
+    std::string from, to;
+  };
+  const std::string unit = "[1.0, 0.0, 0.0]";
+  const std::vector<Edit> edits = {
+      // Vertices: ids, points, keys.
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 0.0, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": -1, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 4294967295, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 4294967294, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": \"0\", \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 0, \"id\": 0, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 0, \"colour\": 1, \"point\""},
+      {&box, "{\"id\": 0, \"point\"", "{\"id\": 0, \"po\\u0069nt\""},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": [0.0, 0.0]"},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": [0.0, 0.0, 0.0, 0.0]"},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": [0.0, null, 0.0]"},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": [0, 0, -0]"},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": [1e400, 0.0, 0.0]"},
+      {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": {\"x\": 0}"},
+      // Edges: ids, half-edges, curves.
+      {&box, "{\"id\": 0, \"he\"", "{\"id\": 2147483647, \"he\""},
+      {&box, "{\"id\": 0, \"he\"", "{\"id\": 2147483646, \"he\""},
+      {&box, "{\"id\": 0, \"he\": [", "{\"id\": 0, \"he\": [{\"origin\": 0, \"next\": 0, \"loop\": 0}, "},
+      {&box, "\"next\": ", "\"next\": 1, \"next\": "},
+      {&box, "\"next\": ", "\"nxt\": "},
+      {&box, ", \"loop\": ", ", \"lo\\u006fp\": "},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": null, \"x\": {\"type\": \"line\""},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": \"lin\\u0065\""},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": \"spline\""},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": \"line\\\"\""},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": \"line\", \"radius\": 1"},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": \"line\", \"type\": \"line\""},
+      {&box, "\"curve\": {\"type\": \"line\"", "\"curve\": {\"type\": 1"},
+      {&box, "\"direction\": " + unit, "\"direction\": [1.000000001, 0.0, 0.0]"},
+      {&box, "\"direction\": " + unit, "\"direction\": [1.0000000011, 0.0, 0.0]"},
+      {&box, "\"direction\": " + unit, "\"direction\": [1, 0, 0]"},
+      {&box, ", \"direction\": " + unit, ""},
+      {&cylinder, "\"curve\": {\"type\": \"circle\"", "\"curve\": {\"type\": \"ellipse\""},
+      {&cylinder, "\"radius\": 1.0}}", "\"radius\": 0}}"},
+      {&cylinder, "\"radius\": 1.0}}", "\"radius\": -1.0}}"},
+      {&cylinder, "\"radius\": 1.0}}", "\"radius\": true}}"},
+      {&cylinder, "\"radius\": 1.0}}", "\"radius\": 1.0, \"radius\": 2.0}}"},
+      {&cylinder, "\"radius\": 1.0}}", "}}"},
+      {&cylinder, "\"x\": " + unit, "\"x\": [1.0, 0.0, 0.000000002]"},
+      {&cylinder, "\"x\": " + unit, "\"x\": [1.0, 0.0, 0.0000000005]"},
+      {&cylinder, "\"x\": " + unit, "\"y\": " + unit},
+      {&cylinder, "\"x\": " + unit + ", ", ""},
+      {&cylinder, "\"x\": " + unit, "\"x\": " + unit + ", \"x\": " + unit},
+      {&cylinder, "\"frame\": {\"origin\": [0.0, 0.0, 0.0]", "\"frame\": {\"origin\": [0.0, 0.0, 0.0], \"w\": 1"},
+      // Loops: the face, the cycle or the lone vertex.
+      {&box, "{\"id\": 0, \"face\": 0,", "{\"id\": 0, \"face\": null,"},
+      {&box, "{\"id\": 0, \"face\": 0,", "{\"id\": 0,"},
+      {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"lone\": 0, \"first\": "},
+      {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"lone\": null, \"first\": "},
+      {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"first\": null, \"x\": "},
+      {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"first\": 1, \"first\": "},
+      // Faces: shells, loops, sense, surfaces.
+      {&box, "\"shell\": 0, \"loops\": [0]", "\"shell\": 0, \"loops\": []"},
+      {&box, "\"shell\": 0, \"loops\": [0]", "\"shell\": 0, \"loops\": [0.5]"},
+      {&box, "\"shell\": 0, \"loops\": [0]", "\"shell\": -0, \"loops\": [0]"},
+      {&box, "\"shell\": 0, \"loops\": [0]", "\"loops\": [0]"},
+      {&box, "\"same_sense\": true", "\"same_sense\": 1"},
+      {&box, "\"same_sense\": true", "\"same_sense\": false"},
+      {&box, "\"same_sense\": true", "\"same_sense\": true, \"same_sense\": true"},
+      {&box, "\"surface\": {\"type\": \"plane\"", "\"surface\": null, \"s\": {\"type\": \"plane\""},
+      {&box, "\"surface\": {\"type\": \"plane\"", "\"surface\": {\"type\": \"plane\", \"radius\": 1.0"},
+      {&box, "\"surface\": {\"type\": \"plane\"", "\"surface\": {\"type\": \"pl\\u0061ne\""},
+      {&box, "\"surface\": {\"type\": \"plane\"", "\"surface\": {\"type\": \"sphere\""},
+      {&cylinder, "\"type\": \"cylinder\"", "\"type\": \"sphere\""},
+      {&cylinder, "\"type\": \"cylinder\"", "\"type\": \"cone\""},
+      {&cone, "\"half_angle\": ", "\"half_angle\": 0, \"x\": "},
+      {&cone, "\"half_angle\": -0.4636476090008061", "\"half_angle\": 0"},
+      {&cone, "\"half_angle\": -0.4636476090008061", "\"half_angle\": -0.0"},
+      {&cone, "\"half_angle\": -0.4636476090008061", "\"half_angle\": 1.5707963267948966"},
+      {&cone, "\"half_angle\": -0.4636476090008061", "\"half_angle\": 1.5707963267948963"},
+      {&cone, "\"type\": \"cone\", \"frame\"", "\"type\": \"cone\", \"radius\": 0, \"frame\""},
+      {&cone, "\"radius\": 1.0, \"half_angle\"", "\"radius\": 0, \"half_angle\""},
+      {&cone, "\"radius\": 1.0, \"half_angle\"", "\"radius\": -0.5, \"half_angle\""},
+      {&cone, "\"radius\": 1.0, \"half_angle\"", "\"half_angle\""},
+      {&sphere, "\"type\": \"sphere\"", "\"type\": \"cylinder\""},
+      {&sphere, "\"radius\": 1.0}", "\"radius\": 0.0}"},
+      {&torus, "\"minor_radius\": 1.0", "\"minor_radius\": 3.0"},
+      {&torus, "\"minor_radius\": 1.0", "\"minor_radius\": 2.9999999999999996"},
+      {&torus, "\"minor_radius\": 1.0", "\"minor_radius\": 0"},
+      {&torus, "\"major_radius\": 3.0", "\"major_radius\": -3.0"},
+      {&torus, "\"major_radius\": 3.0, ", ""},
+      {&torus, "\"type\": \"torus\"", "\"type\": \"cone\""},
+      // Shells.
+      {&box, "{\"id\": 0, \"genus\": 0}", "{\"id\": 0, \"genus\": -1}"},
+      {&box, "{\"id\": 0, \"genus\": 0}", "{\"id\": 0, \"genus\": 0, \"genus\": 0}"},
+      {&box, "{\"id\": 0, \"genus\": 0}", "{\"id\": 0}"},
+      {&box, "{\"id\": 0, \"genus\": 0}", "{\"id\": 0, \"genus\": 0, \"g\": 0}"},
+      {&box, "{\"id\": 0, \"genus\": 0}", "[0, 0]"},
+  };
+  std::size_t refused = 0;
+  for (std::size_t i = 0; i < edits.size(); ++i) {
+    const std::string t = replaced(*edits[i].text, edits[i].from, edits[i].to);
+    EXPECT_EQ(disagreement(t), "") << "edit " << i << ": " << edits[i].from << " -> " << edits[i].to;
+    refused += !read_native(t, nullptr, NativeParser::kReferenceOnly).has_value();
+  }
+  // Most are refusals: a check the typed reader skipped would accept them.
+  EXPECT_GE(refused, edits.size() * 3 / 4);
+  // The unchanged documents read the same too.
+  for (const std::string* t : {&box, &cylinder, &cone, &sphere, &torus}) EXPECT_EQ(disagreement(*t), "");
 }
 
 // A written document with one small damage, as a truncated copy, a bad disk sector or a
