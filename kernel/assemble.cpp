@@ -1,5 +1,12 @@
 #include "kernel/assemble.h"
 
+#include "kernel/threads.h"
+
+#include <exception>
+#include <functional>
+#include <thread>
+#include <utility>
+
 namespace kintsugi {
 
 class BodyReader {
@@ -8,6 +15,41 @@ class BodyReader {
 };
 
 namespace {
+
+// Edges from which the body's arrays are made on two threads: below, a thread costs more
+// than it saves.
+constexpr std::size_t kArraysOnTwoThreadsFrom = 20000;
+
+// Runs `work` on a thread of its own when `apart`, else at once on this one; join() waits
+// for it and passes on what it threw. Joined on destruction too, so that an exception on
+// this thread never leaves the other running on freed state.
+class OtherThread {
+ public:
+  OtherThread(const std::function<void()>& work, bool apart) {
+    if (!apart) {
+      work();
+      return;
+    }
+    thread_ = std::thread([this, work] {
+      try {
+        work();
+      } catch (...) {
+        thrown_ = std::current_exception();
+      }
+    });
+  }
+  ~OtherThread() {
+    if (thread_.joinable()) thread_.join();
+  }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+    if (thrown_) std::rethrow_exception(std::exchange(thrown_, nullptr));
+  }
+
+ private:
+  std::thread thread_;
+  std::exception_ptr thrown_;
+};
 
 bool fail(AssembleError* e, std::string element, std::string message) {
   if (e) *e = {std::move(element), std::move(message)};
@@ -46,20 +88,29 @@ std::optional<Body> BodyReader::run(BodyDescription&& d, AssembleError* error) {
       !slots_for(d.shells, "shell", &ns, error))
     return std::nullopt;
   Body b;
-  b.vertices_.assign(nv, VertexRec{});
-  b.v_alive_.assign(nv, 0);
-  b.points_.assign(nv, geo::Vec3::Zero());
-  b.halfedges_.assign(2 * ne, HalfedgeRec{});
-  b.e_alive_.assign(ne, 0);
-  b.curves_.assign(ne, geo::Curve{});
-  b.loops_.assign(nl, LoopRec{});
-  b.l_alive_.assign(nl, 0);
-  b.faces_.assign(nf, FaceRec{});
-  b.f_alive_.assign(nf, 0);
-  b.surfaces_.assign(nf, geo::Surface{});
-  b.senses_.assign(nf, 1);
-  b.shells_.assign(ns, ShellRec{});
-  b.s_alive_.assign(ns, 0);
+  // The body's arrays, the half-edges and curves on a second thread where two may be used
+  // and the body is large: filling fresh memory is most of the cost here (a page's first
+  // touch costs more than writing it), and the arrays are independent.
+  auto edge_arrays = [&] {
+    b.halfedges_.assign(2 * ne, HalfedgeRec{});
+    b.curves_.assign(ne, geo::Curve{});
+  };
+  {
+    OtherThread edges(edge_arrays, ne >= kArraysOnTwoThreadsFrom && threads_from_environment() >= 2);
+    b.vertices_.assign(nv, VertexRec{});
+    b.v_alive_.assign(nv, 0);
+    b.points_.assign(nv, geo::Vec3::Zero());
+    b.e_alive_.assign(ne, 0);
+    b.loops_.assign(nl, LoopRec{});
+    b.l_alive_.assign(nl, 0);
+    b.faces_.assign(nf, FaceRec{});
+    b.f_alive_.assign(nf, 0);
+    b.surfaces_.assign(nf, geo::Surface{});
+    b.senses_.assign(nf, 1);
+    b.shells_.assign(ns, ShellRec{});
+    b.s_alive_.assign(ns, 0);
+    edges.join();
+  }
 
   for (const auto& v : d.vertices) {
     if (!v.point.allFinite()) return fail(error, "vertex " + std::to_string(v.id), "point is not finite"), std::nullopt;
