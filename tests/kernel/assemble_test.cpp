@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <string>
+#include <vector>
+
 namespace kintsugi {
 namespace {
 
@@ -17,6 +21,27 @@ TEST(Assemble, DescribeThenAssembleGivesAnEqualBody) {
     std::string why;
     EXPECT_TRUE(again->equals(b, &why)) << why;
   }
+}
+
+// A large body's arrays are made on two threads where two may be used (kernel/assemble.cpp):
+// the body is the same on one thread and on two, and equal to the one described.
+TEST(Assemble, ALargeBodyIsTheSameOnOneThreadAndOnTwo) {
+  const Body big = build::grid_box(30000);  // about 60,000 edges: above the two-thread size
+  ASSERT_GE(big.counts().edges, 20000u);
+  const char* was = std::getenv("KINTSUGI_THREADS");
+  const std::string saved = was ? was : "";
+  std::vector<Body> read;
+  for (const char* threads : {"1", "2"}) {
+    setenv("KINTSUGI_THREADS", threads, 1);
+    AssembleError err;
+    auto b = assemble(describe(big), &err);
+    ASSERT_TRUE(b) << err.element << ": " << err.message;
+    read.push_back(std::move(*b));
+  }
+  if (was) setenv("KINTSUGI_THREADS", saved.c_str(), 1); else unsetenv("KINTSUGI_THREADS");
+  std::string why;
+  EXPECT_TRUE(read[0].equals(big, &why)) << why;
+  EXPECT_TRUE(read[1].equals(big, &why)) << why;
 }
 
 TEST(Assemble, OpenShellWithBorderCycle) {
