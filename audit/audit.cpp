@@ -107,13 +107,33 @@ std::vector<Element> anchor(const Problem& p) {
 }
 }  // namespace
 
+namespace {
+// A place where a face is pinched is a cluster of close pairs of its edges, reported at
+// its closest pair (repair/detect_faces.cpp); a repair elsewhere on the face, or one
+// refused, can leave the same place reported at another of its pairs. So a pinch existed
+// before when pinches of the same face named both of its edges (the 949ce42 run, shard 7008:
+// pyramid5's f1 refused at (e23, e30) and (e35, e38), then reported at (e30, e38), 0.0722
+// apart before the pass too).
+bool pinch_site_existed(const Problem& after, const std::vector<Problem>& before) {
+  if (after.elements.size() != 3 || !std::holds_alternative<FaceH>(after.elements[0])) return false;
+  bool named[2] = {false, false};
+  for (const Problem& q : before) {
+    if (q.type != ProblemType::pinched_face || q.elements.empty() || q.elements[0] != after.elements[0]) continue;
+    for (int k = 0; k < 2; ++k)
+      for (const Element& e : q.elements)
+        if (e == after.elements[std::size_t(k) + 1]) named[k] = true;
+  }
+  return named[0] && named[1];
+}
+}  // namespace
+
 bool existed_before(const Problem& after, const std::vector<Problem>& before) {
   const std::vector<Element> key = anchor(after);
   for (const Problem& q : before) {
     const bool same_kind = q.type == after.type || (is_gap(q.type) && is_gap(after.type));
     if (same_kind && anchor(q) == key) return true;
   }
-  return false;
+  return after.type == ProblemType::pinched_face && pinch_site_existed(after, before);
 }
 
 std::vector<Problem> created_by(ProblemType pass, const std::vector<Problem>& before,

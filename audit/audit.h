@@ -59,7 +59,9 @@ TrialResult run_trial(const Recipe& r, const BeautifyOptions& options = {});
 // Whether `after` existed before the pass, as the same problem: the same kind of problem
 // (gaps of any of the three types are one kind: a merge can turn an edge gap into a face
 // gap) at the same place — its anchor: the border cycle of a gap, the two edges of a
-// pinch, the vertex of a mergeable pair, the face(s) or edge(s) of the others.
+// pinch, the vertex of a mergeable pair, the face(s) or edge(s) of the others. A pinch
+// also existed when pinches of its face named both its edges (the same place reported at
+// another of its close pairs).
 bool existed_before(const Problem& after, const std::vector<Problem>& before);
 
 // The problems a pass created: those in `after` that did not exist `before` it, except one

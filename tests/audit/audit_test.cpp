@@ -108,6 +108,28 @@ TEST(Audit, RegisteredPassesKeepTheOrder) {
   EXPECT_EQ(j["cells"].size(), 121u);
 }
 
+// A pinch is one place on a face, reported at its closest pair of edges; the place
+// reported at another of its pairs after a pass is the same pinch, a pinch of other edges
+// or of another face is not.
+TEST(Audit, APinchReportedAtAnotherPairOfItsPlaceExistedBefore) {
+  auto pinch = [](std::uint32_t f, std::uint32_t a, std::uint32_t b) {
+    Problem p;
+    p.type = ProblemType::pinched_face;
+    p.elements = {FaceH(f), EdgeH(a), EdgeH(b)};
+    return p;
+  };
+  // The 949ce42 run, shard 7008: f1 refused at (e23, e30) and (e35, e38), then (e30, e38).
+  const std::vector<Problem> before = {pinch(1, 23, 30), pinch(1, 35, 38)};
+  EXPECT_TRUE(existed_before(pinch(1, 30, 38), before));
+  EXPECT_TRUE(existed_before(pinch(1, 23, 30), before));
+  EXPECT_FALSE(existed_before(pinch(1, 30, 39), before));  // e39 was in no pinch
+  EXPECT_FALSE(existed_before(pinch(2, 30, 38), before));  // another face
+  Problem small;
+  small.type = ProblemType::small_face;
+  small.elements = {FaceH(1), EdgeH(30), EdgeH(38)};
+  EXPECT_FALSE(existed_before(small, before));  // another kind at the same elements
+}
+
 // Every saved finding replays: a witness still shows its "Yes", a documented disagreement
 // still shows, a counterexample (a bug that was fixed) no longer does (or its trial is no
 // longer judged: skipped), an "unsolved" one (a counterexample of the 08cd799 run read
