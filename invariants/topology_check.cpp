@@ -5,10 +5,16 @@
 #include "invariants/topology_check.h"
 
 #include "kernel/local_check.h"
+#include "kernel/threads.h"
+
+#include <iterator>
 
 namespace kintsugi {
 
 namespace {
+
+// Half-edges from which the loop and vertex walks run on two threads.
+constexpr std::size_t kWalksOnTwoThreadsFrom = 100000;
 
 // The walks plus the list they fill, so the global layers below read as before.
 struct Checker {
@@ -26,39 +32,55 @@ struct Checker {
 std::vector<Violation> check_topology(const Body& b) {
   Checker c(b);
   // Loops: closed cycles, and every half-edge counted exactly once.
-  std::vector<long> per_loop(b.loop_slots(), 0);
-  for (HalfedgeH h : b.halfedges()) {
-    LoopH l = b.loop(h);
-    if (l.idx() < per_loop.size()) per_loop[l.idx()]++;
-    else c.add("reference", {h.str()}, "loop " + l.str() + " out of range");
-  }
-  for (LoopH l : b.loops()) {
-    long n = c.loop(l);
-    if (n >= 0 && n != per_loop[l.idx()])
-      c.add("loop_membership", {l.str()},
-            std::to_string(per_loop[l.idx()]) + " half-edges name this loop but its cycle has " + std::to_string(n));
-  }
-  for (LoopH l = LoopH(0); l.idx() < b.loop_slots(); l = LoopH(l.idx() + 1))
-    if (!b.alive(l) && per_loop[l.idx()] > 0) c.add("dangling", {l.str()}, "dead loop still named by half-edges");
+  auto check_loops = [&b](Checker& c) {
+    std::vector<long> per_loop(b.loop_slots(), 0);
+    for (HalfedgeH h : b.halfedges()) {
+      LoopH l = b.loop(h);
+      if (l.idx() < per_loop.size()) per_loop[l.idx()]++;
+      else c.add("reference", {h.str()}, "loop " + l.str() + " out of range");
+    }
+    for (LoopH l : b.loops()) {
+      long n = c.loop(l);
+      if (n >= 0 && n != per_loop[l.idx()])
+        c.add("loop_membership", {l.str()},
+              std::to_string(per_loop[l.idx()]) + " half-edges name this loop but its cycle has " + std::to_string(n));
+    }
+    for (LoopH l = LoopH(0); l.idx() < b.loop_slots(); l = LoopH(l.idx() + 1))
+      if (!b.alive(l) && per_loop[l.idx()] > 0) c.add("dangling", {l.str()}, "dead loop still named by half-edges");
+  };
 
   // Vertices: rotations cover exactly the half-edges leaving each vertex; lone vertices
   // sit in exactly one loop; no vertex without edges or loop.
-  std::vector<long> per_vertex(b.vertex_slots(), 0), lone_in(b.vertex_slots(), 0);
-  for (HalfedgeH h : b.halfedges())
-    if (b.origin(h).idx() < per_vertex.size()) per_vertex[b.origin(h).idx()]++;
-  for (LoopH l : b.loops())
-    if (b.is_lone(l) && b.lone_vertex(l).idx() < lone_in.size()) lone_in[b.lone_vertex(l).idx()]++;
-  for (VertexH v : b.vertices()) {
-    long n = c.vertex(v);
-    if (n > 0 && n != per_vertex[v.idx()])
-      c.add("vertex_orbit", {v.str()},
-            std::to_string(per_vertex[v.idx()]) + " half-edges leave it but its rotation has " + std::to_string(n) +
-                " (a non-manifold vertex)");
-    if (n == 0 && per_vertex[v.idx()] > 0) c.add("vertex_orbit", {v.str()}, "has edges but no out half-edge");
-    if (n == 0 && lone_in[v.idx()] != 1)
-      c.add("dangling", {v.str()}, "a vertex without edges must be the lone vertex of exactly one loop");
-    if (n > 0 && lone_in[v.idx()] != 0) c.add("lone_vertex", {v.str()}, "has edges but is a loop's lone vertex");
+  auto check_vertices = [&b](Checker& c) {
+    std::vector<long> per_vertex(b.vertex_slots(), 0), lone_in(b.vertex_slots(), 0);
+    for (HalfedgeH h : b.halfedges())
+      if (b.origin(h).idx() < per_vertex.size()) per_vertex[b.origin(h).idx()]++;
+    for (LoopH l : b.loops())
+      if (b.is_lone(l) && b.lone_vertex(l).idx() < lone_in.size()) lone_in[b.lone_vertex(l).idx()]++;
+    for (VertexH v : b.vertices()) {
+      long n = c.vertex(v);
+      if (n > 0 && n != per_vertex[v.idx()])
+        c.add("vertex_orbit", {v.str()},
+              std::to_string(per_vertex[v.idx()]) + " half-edges leave it but its rotation has " + std::to_string(n) +
+                  " (a non-manifold vertex)");
+      if (n == 0 && per_vertex[v.idx()] > 0) c.add("vertex_orbit", {v.str()}, "has edges but no out half-edge");
+      if (n == 0 && lone_in[v.idx()] != 1)
+        c.add("dangling", {v.str()}, "a vertex without edges must be the lone vertex of exactly one loop");
+      if (n > 0 && lone_in[v.idx()] != 0) c.add("lone_vertex", {v.str()}, "has edges but is a loop's lone vertex");
+    }
+  };
+
+  // The two walks only read the body: on a large one, the vertices' on a second thread,
+  // their findings after the loops' as on one thread.
+  Checker at_vertices(b);
+  {
+    OtherThread vertices([&] { check_vertices(at_vertices); },
+                         b.halfedge_slots() >= kWalksOnTwoThreadsFrom && threads_from_environment() >= 2);
+    check_loops(c);
+    vertices.join();
   }
+  c.out.insert(c.out.end(), std::make_move_iterator(at_vertices.out.begin()),
+               std::make_move_iterator(at_vertices.out.end()));
 
   // Faces: their loop chain holds exactly the loops that name them; one shell each.
   std::vector<long> loops_naming(b.face_slots(), 0);

@@ -2,10 +2,6 @@
 
 #include "kernel/threads.h"
 
-#include <exception>
-#include <functional>
-#include <thread>
-#include <utility>
 
 namespace kintsugi {
 
@@ -19,37 +15,6 @@ namespace {
 // Edges from which the body's arrays are made on two threads: below, a thread costs more
 // than it saves.
 constexpr std::size_t kArraysOnTwoThreadsFrom = 20000;
-
-// Runs `work` on a thread of its own when `apart`, else at once on this one; join() waits
-// for it and passes on what it threw. Joined on destruction too, so that an exception on
-// this thread never leaves the other running on freed state.
-class OtherThread {
- public:
-  OtherThread(const std::function<void()>& work, bool apart) {
-    if (!apart) {
-      work();
-      return;
-    }
-    thread_ = std::thread([this, work] {
-      try {
-        work();
-      } catch (...) {
-        thrown_ = std::current_exception();
-      }
-    });
-  }
-  ~OtherThread() {
-    if (thread_.joinable()) thread_.join();
-  }
-  void join() {
-    if (thread_.joinable()) thread_.join();
-    if (thrown_) std::rethrow_exception(std::exchange(thrown_, nullptr));
-  }
-
- private:
-  std::thread thread_;
-  std::exception_ptr thrown_;
-};
 
 bool fail(AssembleError* e, std::string element, std::string message) {
   if (e) *e = {std::move(element), std::move(message)};

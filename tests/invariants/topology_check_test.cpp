@@ -13,7 +13,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
+#include <string>
+#include <vector>
 #include <set>
 #include <stdexcept>
 
@@ -230,6 +233,33 @@ TEST(TopologyCheck, ACycleThatDoesNotCloseIsCaughtByReciprocity) {
   for (const Violation& v : got) named.insert(v.invariant);
   EXPECT_TRUE(named.count("twin_next_prev")) << codes(got);
   for (const std::string& n : named) EXPECT_TRUE(n == "twin_next_prev" || n == "vertex_orbit") << codes(got);
+}
+
+// A large body's loop and vertex walks run on two threads (invariants/topology_check.cpp):
+// what they find, and its order, is what one thread finds, on a body broken in many places
+// (loops and rotations both).
+TEST(TopologyCheck, ALargeBodyIsJudgedTheSameOnOneThreadAndOnTwo) {
+  Body b = build::grid_box(30000);
+  ASSERT_GE(b.halfedge_slots(), 100000u);
+  const std::vector<FaceH> faces = b.faces();
+  for (std::size_t k = 0; k < faces.size(); k += 997) {
+    HalfedgeH a = first_of(b, faces[k]);
+    RawBody::halfedge(b, b.prev(a)).next = b.next(a);
+  }
+  RawBody::vertex(b, b.vertices()[12345]).out = HalfedgeH{};
+  const char* was = std::getenv("KINTSUGI_THREADS");
+  const std::string saved = was ? was : "";
+  std::vector<std::vector<Violation>> got;
+  for (const char* threads : {"1", "2"}) {
+    setenv("KINTSUGI_THREADS", threads, 1);
+    got.push_back(check_topology(b));
+  }
+  if (was) setenv("KINTSUGI_THREADS", saved.c_str(), 1); else unsetenv("KINTSUGI_THREADS");
+  std::set<std::string> named;
+  for (const Violation& v : got[0]) named.insert(v.invariant);
+  EXPECT_TRUE(named.count("twin_next_prev") && named.count("vertex_orbit")) << codes(got[0]);
+  ASSERT_EQ(got[0].size(), got[1].size());
+  for (std::size_t i = 0; i < got[0].size(); ++i) EXPECT_EQ(to_string(got[0][i]), to_string(got[1][i])) << i;
 }
 
 // Every code in the spec's topology table has a case above (or is in kCaughtByAnEarlierLayer
