@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string_view>
+#include <initializer_list>
 #include <utility>
 
 namespace kintsugi::io {
@@ -69,101 +70,59 @@ class TypedReader {
   bool error() const { return error_; }
 
   bool vertex(od::object& o, VertexDesc* out) {
-    bool id_seen = false, point_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value v;
-      if (!field(member, &key, &v)) return false;
-      if (key == "id") {
-        if (!once(&id_seen) || !id(v, kMaxId, &out->id)) return false;
-      } else if (key == "point") {
-        if (!once(&point_seen) || !vec3(v, &out->point)) return false;
-      } else {
-        return false;
-      }
-    }
-    return id_seen && point_seen;
+    unsigned seen = 0;
+    return members(o, {"id", "point"}, &seen,
+                   [&](std::size_t k, od::value& v) { return k == 0 ? id(v, kMaxId, &out->id) : vec3(v, &out->point); }) &&
+           seen == 0b11;
   }
 
   bool edge(od::object& o, EdgeDesc* out) {
-    bool id_seen = false, he_seen = false, curve_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value v;
-      if (!field(member, &key, &v)) return false;
-      if (key == "id") {
-        if (!once(&id_seen) || !id(v, kMaxEdgeId, &out->id)) return false;
-      } else if (key == "he") {
-        if (!once(&he_seen) || !halfedges(v, out->he)) return false;
-      } else if (key == "curve") {
-        if (!once(&curve_seen) || !curve(v, &out->curve)) return false;
-      } else {
-        return false;
-      }
-    }
-    return id_seen && he_seen;
+    unsigned seen = 0;
+    return members(o, {"id", "he", "curve"}, &seen,
+                   [&](std::size_t k, od::value& v) {
+                     switch (k) {
+                       case 0: return id(v, kMaxEdgeId, &out->id);
+                       case 1: return halfedges(v, out->he);
+                       default: return curve(v, &out->curve);
+                     }
+                   }) &&
+           (seen & 0b11) == 0b11;  // the curve may be absent
   }
 
   bool loop(od::object& o, LoopDesc* out) {
-    bool id_seen = false, face_seen = false, first_seen = false, lone_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value v;
-      if (!field(member, &key, &v)) return false;
-      if (key == "id") {
-        if (!once(&id_seen) || !id(v, kMaxId, &out->id)) return false;
-      } else if (key == "face") {
-        if (!once(&face_seen) || !optional_id(v, &out->face)) return false;
-      } else if (key == "first") {
-        if (!once(&first_seen) || !optional_id(v, &out->first)) return false;
-      } else if (key == "lone") {
-        if (!once(&lone_seen) || !optional_id(v, &out->lone)) return false;
-      } else {
-        return false;
-      }
-    }
-    // A cycle of half-edges or a lone vertex, not both, not neither.
-    return id_seen && out->first.has_value() != out->lone.has_value();
+    unsigned seen = 0;
+    return members(o, {"id", "face", "first", "lone"}, &seen,
+                   [&](std::size_t k, od::value& v) {
+                     switch (k) {
+                       case 0: return id(v, kMaxId, &out->id);
+                       case 1: return optional_id(v, &out->face);
+                       case 2: return optional_id(v, &out->first);
+                       default: return optional_id(v, &out->lone);
+                     }
+                   }) &&
+           (seen & 1) && out->first.has_value() != out->lone.has_value();  // a cycle or a lone vertex
   }
 
   bool face(od::object& o, FaceDesc* out) {
-    bool id_seen = false, shell_seen = false, loops_seen = false, sense_seen = false, surface_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value v;
-      if (!field(member, &key, &v)) return false;
-      if (key == "id") {
-        if (!once(&id_seen) || !id(v, kMaxId, &out->id)) return false;
-      } else if (key == "shell") {
-        if (!once(&shell_seen) || !id(v, kMaxId, &out->shell)) return false;
-      } else if (key == "loops") {
-        if (!once(&loops_seen) || !id_list(v, &out->loops) || out->loops.empty()) return false;
-      } else if (key == "same_sense") {
-        if (!once(&sense_seen) || !boolean(v, &out->same_sense)) return false;
-      } else if (key == "surface") {
-        if (!once(&surface_seen) || !surface(v, &out->surface)) return false;
-      } else {
-        return false;
-      }
-    }
-    return id_seen && shell_seen && loops_seen && sense_seen;
+    unsigned seen = 0;
+    return members(o, {"id", "shell", "loops", "same_sense", "surface"}, &seen,
+                   [&](std::size_t k, od::value& v) {
+                     switch (k) {
+                       case 0: return id(v, kMaxId, &out->id);
+                       case 1: return id(v, kMaxId, &out->shell);
+                       case 2: return id_list(v, &out->loops) && !out->loops.empty();
+                       case 3: return boolean(v, &out->same_sense);
+                       default: return surface(v, &out->surface);
+                     }
+                   }) &&
+           (seen & 0b1111) == 0b1111;  // the surface may be absent
   }
 
   bool shell(od::object& o, ShellDesc* out) {
-    bool id_seen = false, genus_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value v;
-      if (!field(member, &key, &v)) return false;
-      if (key == "id") {
-        if (!once(&id_seen) || !id(v, kMaxId, &out->id)) return false;
-      } else if (key == "genus") {
-        if (!once(&genus_seen) || !id(v, kMaxId, &out->genus)) return false;
-      } else {
-        return false;
-      }
-    }
-    return id_seen && genus_seen;
+    unsigned seen = 0;
+    return members(o, {"id", "genus"}, &seen,
+                   [&](std::size_t k, od::value& v) { return id(v, kMaxId, k == 0 ? &out->id : &out->genus); }) &&
+           seen == 0b11;
   }
 
  private:
@@ -173,8 +132,26 @@ class TypedReader {
     error_ = true;
     return false;
   }
-  // A key seen for the first time (a repeat is the tree path's to refuse).
-  static bool once(bool* seen) { return !std::exchange(*seen, true); }
+  // Reads each member of `o` with read(k, value), k its key's place in `keys`; sets bit k
+  // of *seen for each. False on a key not in `keys` or seen twice (the tree path's to read
+  // or refuse), on a read that fails, or on a simdjson error.
+  template <class Read>
+  bool members(od::object& o, std::initializer_list<std::string_view> keys, unsigned* seen, Read read) {
+    for (auto member : o) {
+      std::string_view key;
+      od::value v;
+      if (!field(member, &key, &v)) return false;
+      std::size_t k = 0;
+      for (std::string_view name : keys) {
+        if (name == key) break;
+        ++k;
+      }
+      if (k == keys.size() || (*seen & (1u << k))) return false;
+      *seen |= 1u << k;
+      if (!read(k, v)) return false;
+    }
+    return true;
+  }
 
   // A member: its key when written without escapes (never unescaped here, so that the tree
   // path may read the element again), and its value.
@@ -292,23 +269,14 @@ class TypedReader {
     od::object o;
     if (!type_of(v, &type) || type != od::json_type::object) return false;
     if (v.get_object().get(o)) return failed();
-    bool origin_seen = false, x_seen = false, z_seen = false;
-    for (auto member : o) {
-      std::string_view key;
-      od::value m;
-      if (!field(member, &key, &m)) return false;
-      if (key == "origin") {
-        if (!once(&origin_seen) || !vec3(m, &out->origin)) return false;
-      } else if (key == "x") {
-        if (!once(&x_seen) || !unit_vec3(m, &out->x)) return false;
-      } else if (key == "z") {
-        if (!once(&z_seen) || !unit_vec3(m, &out->z)) return false;
-      } else {
-        return false;
-      }
-    }
-    return origin_seen && x_seen && z_seen && std::abs(out->x.dot(out->z)) <= kUnitTolerance;
+    unsigned seen = 0;
+    return members(o, {"origin", "x", "z"}, &seen,
+                   [&](std::size_t k, od::value& m) {
+                     return k == 0 ? vec3(m, &out->origin) : unit_vec3(m, k == 1 ? &out->x : &out->z);
+                   }) &&
+           seen == 0b111 && std::abs(out->x.dot(out->z)) <= kUnitTolerance;
   }
+
   bool halfedges(od::value& v, HalfedgeDesc* he) {
     od::json_type type;
     od::array a;
@@ -321,22 +289,14 @@ class TypedReader {
       if (std::move(item).get(h)) return failed();
       if (side == 2 || !type_of(h, &type) || type != od::json_type::object) return false;
       if (h.get_object().get(o)) return failed();
-      bool origin_seen = false, next_seen = false, loop_seen = false;
-      for (auto member : o) {
-        std::string_view key;
-        od::value m;
-        if (!field(member, &key, &m)) return false;
-        if (key == "origin") {
-          if (!once(&origin_seen) || !id(m, kMaxId, &he[side].origin)) return false;
-        } else if (key == "next") {
-          if (!once(&next_seen) || !id(m, kMaxId, &he[side].next)) return false;
-        } else if (key == "loop") {
-          if (!once(&loop_seen) || !id(m, kMaxId, &he[side].loop)) return false;
-        } else {
-          return false;
-        }
-      }
-      if (!origin_seen || !next_seen || !loop_seen) return false;
+      unsigned seen = 0;
+      HalfedgeDesc& h_out = he[side];
+      if (!members(o, {"origin", "next", "loop"}, &seen,
+                   [&](std::size_t k, od::value& m) {
+                     return id(m, kMaxId, k == 0 ? &h_out.origin : k == 1 ? &h_out.next : &h_out.loop);
+                   }) ||
+          seen != 0b111)
+        return false;
       ++side;
     }
     return side == 2;
@@ -350,7 +310,6 @@ class TypedReader {
     double radius = 0, half_angle = 0, major_radius = 0, minor_radius = 0;
     enum Member { kType, kOrigin, kDirection, kFrame, kRadius, kHalfAngle, kMajor, kMinor };
     unsigned seen = 0;
-    bool has(Member m) const { return seen & (1u << m); }
     bool is(std::initializer_list<Member> members) const {
       unsigned want = 0;
       for (Member m : members) want |= 1u << m;
@@ -362,43 +321,21 @@ class TypedReader {
     od::object o;
     if (!type_of(v, &type) || type != od::json_type::object) return false;
     if (v.get_object().get(o)) return failed();
-    for (auto member : o) {
-      std::string_view key;
-      od::value m;
-      if (!field(member, &key, &m)) return false;
-      Geometry::Member which;
-      bool ok = false;
-      if (key == "type") {
-        which = Geometry::kType;
-        ok = plain_string(m, &g->type);
-      } else if (key == "origin") {
-        which = Geometry::kOrigin;
-        ok = vec3(m, &g->origin);
-      } else if (key == "direction") {
-        which = Geometry::kDirection;
-        ok = unit_vec3(m, &g->direction);
-      } else if (key == "frame") {
-        which = Geometry::kFrame;
-        ok = frame(m, &g->frame);
-      } else if (key == "radius") {
-        which = Geometry::kRadius;
-        ok = real(m, &g->radius);
-      } else if (key == "half_angle") {
-        which = Geometry::kHalfAngle;
-        ok = real(m, &g->half_angle);
-      } else if (key == "major_radius") {
-        which = Geometry::kMajor;
-        ok = real(m, &g->major_radius);
-      } else if (key == "minor_radius") {
-        which = Geometry::kMinor;
-        ok = real(m, &g->minor_radius);
-      } else {
-        return false;
-      }
-      if (!ok || g->has(which)) return false;
-      g->seen |= 1u << which;
-    }
-    return g->has(Geometry::kType);
+    return members(o, {"type", "origin", "direction", "frame", "radius", "half_angle", "major_radius", "minor_radius"},
+                   &g->seen,
+                   [&](std::size_t k, od::value& m) {
+                     switch (Geometry::Member(k)) {
+                       case Geometry::kType: return plain_string(m, &g->type);
+                       case Geometry::kOrigin: return vec3(m, &g->origin);
+                       case Geometry::kDirection: return unit_vec3(m, &g->direction);
+                       case Geometry::kFrame: return frame(m, &g->frame);
+                       case Geometry::kRadius: return real(m, &g->radius);
+                       case Geometry::kHalfAngle: return real(m, &g->half_angle);
+                       case Geometry::kMajor: return real(m, &g->major_radius);
+                       case Geometry::kMinor: return real(m, &g->minor_radius);
+                     }
+                     return false;
+                   });  // which members a kind needs, "type" among them, its caller's Geometry::is says
   }
 
   bool curve(od::value& v, geo::Curve* out) {

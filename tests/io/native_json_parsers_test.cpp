@@ -207,6 +207,7 @@ TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
       {&box, "\"point\": [0.0, 0.0, 0.0]", "\"point\": {\"x\": 0}"},
       // Edges: ids, half-edges, curves.
       {&box, "{\"id\": 0, \"he\"", "{\"id\": 2147483647, \"he\""},
+      {&box, "{\"id\": 0, \"he\"", "{\"he\""},
       {&box, "{\"id\": 0, \"he\"", "{\"id\": 2147483646, \"he\""},
       {&box, "{\"id\": 0, \"he\": [", "{\"id\": 0, \"he\": [{\"origin\": 0, \"next\": 0, \"loop\": 0}, "},
       {&box, "\"next\": ", "\"next\": 1, \"next\": "},
@@ -238,6 +239,7 @@ TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
       // Loops: the face, the cycle or the lone vertex.
       {&box, "{\"id\": 0, \"face\": 0,", "{\"id\": 0, \"face\": null,"},
       {&box, "{\"id\": 0, \"face\": 0,", "{\"id\": 0,"},
+      {&box, "{\"id\": 0, \"face\": 0,", "{\"face\": 0,"},
       {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"lone\": 0, \"first\": "},
       {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"lone\": null, \"first\": "},
       {&box, "{\"id\": 0, \"face\": 0, \"first\": ", "{\"id\": 0, \"face\": 0, \"first\": null, \"x\": "},
@@ -248,6 +250,8 @@ TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
       {&box, "\"shell\": 0, \"loops\": [0]", "\"shell\": -0, \"loops\": [0]"},
       {&box, "\"shell\": 0, \"loops\": [0]", "\"loops\": [0]"},
       {&box, "\"same_sense\": true", "\"same_sense\": 1"},
+      {&box, ", \"same_sense\": true", ""},
+      {&box, "\"loops\": [0], ", ""},
       {&box, "\"same_sense\": true", "\"same_sense\": false"},
       {&box, "\"same_sense\": true", "\"same_sense\": true, \"same_sense\": true"},
       {&box, "\"surface\": {\"type\": \"plane\"", "\"surface\": null, \"s\": {\"type\": \"plane\""},
@@ -288,6 +292,15 @@ TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
   }
   // Most are refusals: a check the typed reader skipped would accept them.
   EXPECT_GE(refused, edits.size() * 3 / 4);
+  // An edge without its half-edges.
+  {
+    std::string t = box;
+    const std::size_t from = t.find("\"he\": ["), to = t.find("}], ", from);
+    ASSERT_NE(to, std::string::npos);
+    t.erase(from, to + 4 - from);
+    EXPECT_EQ(disagreement(t), "");
+    EXPECT_FALSE(read_native(t, nullptr, NativeParser::kReferenceOnly).has_value());
+  }
   // The unchanged documents read the same too.
   for (const std::string* t : {&box, &cylinder, &cone, &sphere, &torus}) EXPECT_EQ(disagreement(*t), "");
 }
