@@ -170,8 +170,7 @@ class SimdjsonTreeParser {
     if (v.type().get(type)) return false;
     switch (type) {
       case od::json_type::object: {
-        if (open >= kMaxNativeDepth) return false;
-        od::object o;
+        od::object o;  // members() checks the depth
         return !v.get_object().get(o) && members(o, b, open);
       }
       case od::json_type::array: {
