@@ -340,15 +340,22 @@ class TypedReader {
                    });  // which members a kind needs, "type" among them, its caller's Geometry::is says
   }
 
-  bool curve(od::value& v, geo::Curve* out) {
-    bool null = false;
-    if (!is_null(v, &null)) return false;
-    if (null) {
+  // null (no geometry: *out is std::monostate, *none set) or a geometry object into `g`.
+  template <class Variant>
+  bool none_or_geometry(od::value& v, Variant* out, Geometry* g, bool* none) {
+    if (!is_null(v, none)) return false;
+    if (*none) {
       *out = std::monostate{};
       return true;
     }
+    return geometry(v, g);
+  }
+
+  bool curve(od::value& v, geo::Curve* out) {
+    bool none = false;
     Geometry g;
-    if (!geometry(v, &g)) return false;
+    if (!none_or_geometry(v, out, &g, &none)) return false;
+    if (none) return true;
     using M = Geometry::Member;
     if (g.type == "line" && g.is({M::kType, M::kOrigin, M::kDirection})) {
       *out = geo::Line{g.origin, g.direction};
@@ -362,14 +369,10 @@ class TypedReader {
   }
 
   bool surface(od::value& v, geo::Surface* out) {
-    bool null = false;
-    if (!is_null(v, &null)) return false;
-    if (null) {
-      *out = std::monostate{};
-      return true;
-    }
+    bool none = false;
     Geometry g;
-    if (!geometry(v, &g)) return false;
+    if (!none_or_geometry(v, out, &g, &none)) return false;
+    if (none) return true;
     using M = Geometry::Member;
     if (g.type == "plane" && g.is({M::kType, M::kFrame})) {
       *out = geo::Plane{g.frame};

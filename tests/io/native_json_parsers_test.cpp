@@ -301,6 +301,16 @@ TEST(NativeReaderParsers, AgreeOnEveryElementCheck) {
     EXPECT_EQ(disagreement(t), "");
     EXPECT_FALSE(read_native(t, nullptr, NativeParser::kReferenceOnly).has_value());
   }
+  // No curve, no surface (null): read, as the reference reads them.
+  for (const auto& [key, end] : {std::pair<std::string, std::string>{"\"curve\": {", "]}"}, {"\"surface\": {", "]}}"}}) {
+    std::string t = box;
+    const std::size_t from = t.find(key), to = t.find(end, from);
+    ASSERT_NE(to, std::string::npos);
+    t.replace(from, to + end.size() - from, key.substr(0, key.size() - 1) + "null");
+    EXPECT_EQ(disagreement(t), "") << key;
+    EXPECT_TRUE(read_native(t, nullptr, NativeParser::kReferenceOnly).has_value()) << key;
+    EXPECT_EQ(typed_count(t).trees, 0u) << key;
+  }
   // The unchanged documents read the same too.
   for (const std::string* t : {&box, &cylinder, &cone, &sphere, &torus}) EXPECT_EQ(disagreement(*t), "");
 }
