@@ -171,6 +171,17 @@ class TypedReader {
   }
 
   bool type_of(od::value& v, od::json_type* type) { return !v.type().get(*type) || failed(); }
+  // An array or an object value, begun.
+  bool array_of(od::value& v, od::array* a) {
+    od::json_type type;
+    if (!type_of(v, &type) || type != od::json_type::array) return false;
+    return !v.get_array().get(*a) || failed();
+  }
+  bool object_of(od::value& v, od::object* o) {
+    od::json_type type;
+    if (!type_of(v, &type) || type != od::json_type::object) return false;
+    return !v.get_object().get(*o) || failed();
+  }
 
   // A string value written without escapes, as its text.
   bool plain_string(od::value& v, std::string_view* s) {
@@ -235,10 +246,8 @@ class TypedReader {
     return !v.get_bool().get(*out) || failed();
   }
   bool id_list(od::value& v, std::vector<std::uint32_t>* out) {
-    od::json_type type;
     od::array a;
-    if (!type_of(v, &type) || type != od::json_type::array) return false;
-    if (v.get_array().get(a)) return failed();
+    if (!array_of(v, &a)) return false;
     out->clear();
     for (auto item : a) {
       od::value x;
@@ -250,10 +259,8 @@ class TypedReader {
     return true;
   }
   bool vec3(od::value& v, geo::Vec3* out) {
-    od::json_type type;
     od::array a;
-    if (!type_of(v, &type) || type != od::json_type::array) return false;
-    if (v.get_array().get(a)) return failed();
+    if (!array_of(v, &a)) return false;
     Eigen::Index k = 0;
     for (auto item : a) {
       od::value x;
@@ -267,10 +274,8 @@ class TypedReader {
     return vec3(v, out) && std::abs(out->norm() - 1.0) <= kUnitTolerance;
   }
   bool frame(od::value& v, geo::Frame* out) {
-    od::json_type type;
     od::object o;
-    if (!type_of(v, &type) || type != od::json_type::object) return false;
-    if (v.get_object().get(o)) return failed();
+    if (!object_of(v, &o)) return false;
     unsigned seen = 0;
     return members(o, {"origin", "x", "z"}, &seen,
                    [&](std::size_t k, od::value& m) {
@@ -280,17 +285,14 @@ class TypedReader {
   }
 
   bool halfedges(od::value& v, HalfedgeDesc* he) {
-    od::json_type type;
     od::array a;
-    if (!type_of(v, &type) || type != od::json_type::array) return false;
-    if (v.get_array().get(a)) return failed();
+    if (!array_of(v, &a)) return false;
     std::size_t side = 0;
     for (auto item : a) {
       od::value h;
       od::object o;
       if (std::move(item).get(h)) return failed();
-      if (side == 2 || !type_of(h, &type) || type != od::json_type::object) return false;
-      if (h.get_object().get(o)) return failed();
+      if (side == 2 || !object_of(h, &o)) return false;
       unsigned seen = 0;
       HalfedgeDesc& h_out = he[side];
       if (!members(o, {"origin", "next", "loop"}, &seen,
@@ -319,10 +321,8 @@ class TypedReader {
     }
   };
   bool geometry(od::value& v, Geometry* g) {
-    od::json_type type;
     od::object o;
-    if (!type_of(v, &type) || type != od::json_type::object) return false;
-    if (v.get_object().get(o)) return failed();
+    if (!object_of(v, &o)) return false;
     return members(o, {"type", "origin", "direction", "frame", "radius", "half_angle", "major_radius", "minor_radius"},
                    &g->seen,
                    [&](std::size_t k, od::value& m) {
