@@ -1,6 +1,7 @@
 // Geometry shared by the repairs: handles from problem text, edge curves from the faces
 // beside them, vertices where their faces meet, and the local consistency check.
 #include "geometry/curve.h"
+#include "geometry/distance.h"
 #include "geometry/frame.h"
 #include "geometry/intersect.h"
 #include "geometry/meet_point.h"
@@ -157,6 +158,30 @@ geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, co
     if (geo::closest_point(marched, geo::evaluate(c, 0.5 * (r.t0 + r.t1))).distance <= tol.length) return c;
   }
   return marched;
+}
+
+// How far the piece of `c` between h's vertices (c runs along h) gets from h's present
+// path, the edge as it was before its faces or vertices moved; 0 for a closed edge or a
+// present curve that is not analytic (a gap's scanned border is replaced, not followed).
+// A repair moves an edge no further than its vertices (max_vertex_move()): a piece that
+// strays further is another branch of the intersection, or another arc of it. Where a
+// thin cylinder (a sliver) runs almost along a plane, the solve's slightest tilt makes
+// their meeting line a long flat ellipse; the edge's two vertices can then land on its
+// two arms, and every arc between them doubles back around the ellipse's tip, a spike of
+// the face (Table 1 audit, small_face_chain -> pinched_face on box and paper4).
+double strays_from(const Body& b, HalfedgeH h, const geo::Curve& c, const geo::Tolerances& tol) {
+  const geo::Curve& old = b.curve(edge_of(h));
+  if (b.origin(h) == b.target(h)) return 0.0;
+  if (!std::holds_alternative<geo::Line>(old) && !std::holds_alternative<geo::Circle>(old) &&
+      !std::holds_alternative<geo::Ellipse>(old))
+    return 0.0;
+  const std::vector<geo::Vec3> was = halfedge_polyline(b, h, tol.probe_chordal());
+  const geo::Vec3 &p0 = b.point(b.origin(h)), &p1 = b.point(b.target(h));
+  const geo::ParameterRange r = geo::parameter_range(c, p0, p1);
+  double worst = 0.0;
+  for (const geo::Vec3& q : geo::sample_curve(c, r.t0, r.t1, tol.probe_chordal()))
+    worst = std::max(worst, geo::point_polyline(q, was).distance);
+  return worst;
 }
 
 // Curves through p0 and p1 that lie on both surfaces where the surfaces coincide (two
@@ -368,7 +393,13 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   geo::Vec3 want = (p1 - p0);
   if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
   if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);
-  return precise_instead(own_piece(c, p0, p1, closed), sf, sg, p0, p1, closed, tol);
+  geo::Curve piece = precise_instead(own_piece(c, p0, p1, closed), sf, sg, p0, p1, closed, tol);
+  if (const double off = strays_from(b, h, piece, tol); off > tol.max_vertex_move()) {
+    *why = e.str() + ": where " + f.str() + " and " + g.str() + " now meet between its vertices runs " + fmt(off) +
+           " from the edge (more than " + fmt(tol.max_vertex_move()) + ")";
+    return std::nullopt;
+  }
+  return piece;
 }
 
 std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, const geo::Tolerances& tol) {
