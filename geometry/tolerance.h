@@ -89,6 +89,8 @@ struct Tolerances {
   // edge, small face): 2 · length. The vertex travels across the feature (shorter than
   // `length`) and then to where the fitted surfaces actually meet (within `length` of the
   // feature, or the surfaces would not be a repair's to join); more is a different model.
+  // An edge's curve derived anew after a repair may stray from where the edge was by as
+  // much and no more (repair/beautify_geometry.cpp, strays_from).
   static constexpr double kMaxVertexMoveRatio = 2;
   double max_vertex_move() const { return kMaxVertexMoveRatio * length; }
 
