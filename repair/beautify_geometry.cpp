@@ -394,7 +394,17 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
   if (!std::holds_alternative<std::monostate>(old)) want = geo::tangent(old, geo::parameter(old, p0));
   if (want.norm() > 0 && geo::tangent(c, geo::parameter(c, p0)).dot(want) < 0) c = reversed(c);
   geo::Curve piece = precise_instead(own_piece(c, p0, p1, closed), sf, sg, p0, p1, closed, tol);
-  if (const double off = strays_from(b, h, piece, tol); off > tol.max_vertex_move()) {
+  double off = strays_from(b, h, piece, tol);
+  if (off > tol.max_vertex_move() && geo::is_closed(c)) {
+    // At an ellipse's tip its tangent is square to the edge, and the start tangent's sign
+    // says nothing of the way round: a plane tilted by a hair against a cylinder's axis
+    // met it in an ellipse of major radius 3e5 with a vertex at its tip, and the piece ran the
+    // whole ellipse round (scan-parts bracket 509001734). The other way, where it stays
+    // with the edge.
+    geo::Curve other = precise_instead(own_piece(reversed(c), p0, p1, closed), sf, sg, p0, p1, closed, tol);
+    if (const double o = strays_from(b, h, other, tol); o < off) piece = other, off = o;
+  }
+  if (off > tol.max_vertex_move()) {
     *why = e.str() + ": where " + f.str() + " and " + g.str() + " now meet between its vertices runs " + fmt(off) +
            " from the edge (more than " + fmt(tol.max_vertex_move()) + ")";
     return std::nullopt;

@@ -428,6 +428,14 @@ TEST(ScanParts, GapWhereAFilletEndsClosesInOneVertex) { expect_case_passes(67, 8
 // edge, and the plane stays where the fillet holds it.
 TEST(ScanParts, APlaneTangentToAFilletStaysTangentThroughARepair) { expect_case_passes(131, 219); }
 
+// A bracket's pinch (seed base 509, 14 parts): the region solve tilted a plane by a hair
+// against a cylinder's axis (radius 8) that it met along a ruling, and their meeting line
+// became an ellipse of major radius 3e5 with the edge's vertex at its tip. There the
+// start tangent is square to the edge, and the arc taken ran the whole ellipse round: the
+// plane's face turned inside out and the repair was refused. A derived piece that strays
+// from where the edge was now goes the other way round.
+TEST(ScanParts, AnEdgeAtAFlatEllipsesTipTakesTheArcAlongTheEdge) { expect_case_passes(509, 207, 14); }
+
 // Measured 2026-12-02 with `build/bin/scan_parts_tests --gtest_filter=ScanParts.ScoreTable`
 // (36 cases, seed base 1; the same as `ctest --test-dir build -R ScanParts`): 25 of 26
 // judged cases passed (0.962; 10 skipped: no place for the defect). It was 23 of 26 before
