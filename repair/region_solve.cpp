@@ -399,7 +399,14 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       // Two planes along an edge are tangent only where they are one plane: the ties
       // above hold those together.
       if (std::holds_alternative<geo::Plane>(b.surface(f)) && std::holds_alternative<geo::Plane>(b.surface(g))) continue;
-      const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
+      std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
+      // A straight edge is its two ends: its inner points are taken on the chord. (Without
+      // them a plane tangent to a cylinder along a ruling, a fillet's or a rounded end's
+      // side, was never held tangent: the solve tilted the plane by 2e-4 rad, their ruling
+      // became an ellipse 4e4 long, and the edge's vertices landed on its two arms:
+      // scan-parts bracket 613002046.)
+      if (along.size() == 2 && std::holds_alternative<geo::Line>(b.curve(e)))
+        along = {along[0], along[0] + (along[1] - along[0]) / 3.0, along[0] + 2.0 * (along[1] - along[0]) / 3.0, along[1]};
       if (along.size() < 3) continue;
       double extent = 0;
       for (const geo::Vec3& q : along) extent = std::max(extent, (q - along.front()).norm());
