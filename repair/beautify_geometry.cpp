@@ -162,7 +162,8 @@ geo::Curve precise_instead(const geo::Curve& marched, const geo::Surface& sf, co
 
 // How far the piece of `c` between h's vertices (c runs along h) gets from h's present
 // path, the edge as it was before its faces or vertices moved; 0 for a closed edge or a
-// present curve that is not analytic (a gap's scanned border is replaced, not followed).
+// present curve that is not a line, circle or ellipse (a gap's scanned border is replaced,
+// not followed).
 // A repair moves an edge no further than its vertices (max_vertex_move()): a piece that
 // strays further is another branch of the intersection, or another arc of it. Where a
 // thin cylinder (a sliver) runs almost along a plane, the solve's slightest tilt makes

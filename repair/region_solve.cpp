@@ -403,10 +403,12 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       // A straight edge is its two ends: its inner points are taken on the chord. (Without
       // them a plane tangent to a cylinder along a ruling, a fillet's or a rounded end's
       // side, was never held tangent: the solve tilted the plane by 2e-4 rad, their ruling
-      // became an ellipse 4e4 long, and the edge's vertices landed on its two arms:
+      // became an ellipse of major radius 4e4, and the edge's vertices landed on its two arms:
       // scan-parts bracket 613002046.)
-      if (along.size() == 2 && std::holds_alternative<geo::Line>(b.curve(e)))
-        along = {along[0], along[0] + (along[1] - along[0]) / 3.0, along[0] + 2.0 * (along[1] - along[0]) / 3.0, along[1]};
+      if (along.size() == 2 && std::holds_alternative<geo::Line>(b.curve(e))) {
+        const geo::Vec3 a = along[0], d = along[1] - along[0];
+        along = {a, a + d / 3.0, a + 2.0 * d / 3.0, along[1]};
+      }
       if (along.size() < 3) continue;
       double extent = 0;
       for (const geo::Vec3& q : along) extent = std::max(extent, (q - along.front()).norm());

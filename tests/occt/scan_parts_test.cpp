@@ -439,9 +439,10 @@ TEST(ScanParts, AnEdgeAtAFlatEllipsesTipTakesTheArcAlongTheEdge) { expect_case_p
 // The same bracket's pinch on other seed bases: its plate's plane is tangent to a rounded
 // end's cylinder along a straight edge. The solve held tangent faces tangent only along
 // curved edges (a straight one is its two ends, no inner points to hold), so it tilted the
-// plane by 2e-4 rad: their ruling became an ellipse 4e4 long with the edge's vertices on
-// its two arms (613), the face turned inside out (131) or a vertex was forced 0.083 at a
-// tolerance of 0.061 (601). A straight edge's inner points are now taken on its chord.
+// plane by 2e-4 rad: their ruling became an ellipse of major radius 4e4 with the edge's
+// vertices on its two arms (613), the face turned inside out (131) or a vertex was forced
+// 0.083 at a tolerance of 0.061 (601). A straight edge's inner points are now taken on its
+// chord.
 // Bracket 71000252 (a boss inset 0.07-0.11 from the plate's side, once thought a defect
 // partly above the tolerance) passes since this change too (not traced further).
 TEST(ScanParts, APlaneTangentToACylinderAlongARulingStaysTangent) {
