@@ -252,11 +252,47 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
       if (polys[i].empty()) polys[i] = halfedge_polyline(b, sides[i].h, c.chordal);  // never empty once made
       return polys[i];
     };
+    // Sides across a small face g from each other: their closest points both on g's
+    // boundary (an edge of g, or a vertex of g), or one side on a ring of the face that
+    // bounds g alone (an island). The narrow place is g's, not a neck of the face, and
+    // its repair (pass 9: one vertex) takes both points, or the whole ring, with it.
+    // Pass 8's merges wrapped faces round a small face a pinch repair had cut off (on
+    // three sides, or all round as a ring), and the sides across it read as a new pinch
+    // (the Table 1 audit's same_geometry_faces -> pinched_face, run cca8590, shards 9205
+    // and 9208).
+    auto small_beyond = [&](HalfedgeH h) {
+      const FaceH g = b.face(twin(h));
+      return g.valid() && g != f && c.face(g).small ? g : FaceH{};
+    };
+    auto island_ring = [&](HalfedgeH h) {
+      const FaceH g = small_beyond(h);
+      if (!g.valid() || b.loops_of(g).size() != 1) return false;
+      bool all = true;
+      b.for_each_halfedge(b.loop(h), [&](HalfedgeH x) { all = all && b.face(twin(x)) == g; });
+      return all;
+    };
+    auto small_faces_at = [&](HalfedgeH h, const geo::Vec3& p) {  // the small faces whose boundary holds p
+      std::vector<FaceH> out;
+      if (FaceH g = small_beyond(h); g.valid()) out.push_back(g);
+      for (VertexH v : {b.origin(h), b.target(h)})
+        if ((b.point(v) - p).norm() <= c.tol.precision)
+          for (HalfedgeH o : b.outgoing(v))
+            if (FaceH g = b.face(o); g.valid() && g != f && c.face(g).small) out.push_back(g);
+      return out;
+    };
+    auto across_small_face = [&](HalfedgeH x, HalfedgeH y, const geo::Vec3& px, const geo::Vec3& py) {
+      if (island_ring(x) || island_ring(y)) return true;
+      const std::vector<FaceH> gx = small_faces_at(x, px), gy = small_faces_at(y, py);
+      for (FaceH g : gx)
+        if (std::find(gy.begin(), gy.end(), g) != gy.end()) return true;
+      return false;
+    };
     std::vector<ClosePair> pairs;
     auto consider = [&](const std::vector<geo::Vec3>& pa, const std::vector<geo::Vec3>& pb, HalfedgeH x, HalfedgeH y,
                         PinchLocation where) {
       geo::ClosestPair c = nearest(pa, pb);
-      if (c.distance < t) pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b, parallelism(pa, pb, c)});
+      if (c.distance < t && !across_small_face(x, y, c.on_a, c.on_b))
+        pairs.push_back({c.distance, x, y, where, c.on_a, c.on_b, parallelism(pa, pb, c)});
     };
     // Only pairs whose boxes come within t can be closer than t: linear in the face for
     // bounded local density, however many rings (bosses) the face holds.
@@ -346,6 +382,7 @@ void detect_pinched(DetectContext& c, std::vector<Problem>& out, std::span<const
         constexpr double kSpikeAngle = 20.0 * 3.14159265358979323846 / 180.0;
         if (parallel < std::cos(kSpikeAngle)) continue;
       }
+      if (across_small_face(A.h, B.h, cp.on_a, cp.on_b)) continue;
       pairs.push_back({cp.distance, A.h, B.h, joined ? PinchLocation::spiking : PinchLocation::necking, cp.on_a, cp.on_b,
                        parallel});
     }
