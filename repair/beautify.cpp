@@ -287,6 +287,22 @@ Touched alive_part(const Body& b, const Touched& t) {
   return out;
 }
 
+// The faces a region solve over `t` takes in (detail::solve_region): those touched, round
+// the touched vertices and along the touched edges that are still alive.
+std::set<FaceH> solved_faces(const Body& b, const Touched& t) {
+  std::set<FaceH> out;
+  for (FaceH f : t.faces)
+    if (b.alive(f)) out.insert(f);
+  for (VertexH v : t.vertices)
+    if (b.alive(v))
+      for (FaceH f : detail::faces_around(b, v)) out.insert(f);
+  for (EdgeH e : t.edges)
+    if (b.alive(e))
+      for (unsigned s = 0; s < 2; ++s)
+        if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) out.insert(f);
+  return out;
+}
+
 // Solves again, each in its own transaction, the regions of repairs kept at the tolerance
 // only. What made their solve fail then is often gone now: two nearly coincident faces
 // beside a pinch make a vertex ill-conditioned until pass 8 merges them. A region that
@@ -452,12 +468,18 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
   }
   // The first repair left unsolved, and every later one whose faces it did not touch:
   // a later one beside it may be unsolved only because of it (its solve meets the
-  // vertex the first left off its surfaces), and is tried again in the next run.
+  // vertex the first left off its surfaces), and is tried again in the next run. Its
+  // faces are those its solve takes in: the faces round the vertices and edges it
+  // touched too. (A pinch zipped against a pyramid's side left two new vertices of that
+  // side off the boss's face; a merge of two edges along the side's base, touching no
+  // face of the pinch's, solved a region holding them, failed, and was refused in every
+  // run: rapidcheck seed 53 of Beautify.InjectedDefectsOfTypes7To11AreRepaired.)
   std::set<FaceH> near_unsolved;
   for (const Unsettled& u : unsettled) {
+    const std::set<FaceH> faces = solved_faces(b, u.touched);
     bool beside = false;
-    for (FaceH f : u.touched.faces) beside = beside || near_unsolved.count(f);
-    near_unsolved.insert(u.touched.faces.begin(), u.touched.faces.end());
+    for (FaceH f : faces) beside = beside || near_unsolved.count(f);
+    near_unsolved.insert(faces.begin(), faces.end());
     if (beside) continue;
     const RepairEntry& e = r.problems[u.entry];
     unsolved[{u.round, e.problem.type, e.problem.elements}] =

@@ -326,5 +326,28 @@ TEST(Pinch, AZipThatLeavesLoopsTouchingIsUndoneWhenTheNextZipIsRefused) {
   EXPECT_LE(check_geometry(b, tol.precision).max_deviation, tol.precision);
 }
 
+// A pinch that cannot be solved (a boss 0.012 from a pyramid's side at t = 0.02, whose
+// zip forces a vertex 0.0204) is kept at the tolerance only, with two new vertices of
+// the side off the boss's face. A later merge of two edges along that side's base solved
+// a region holding them and failed too. At the end the run is undone and run again with
+// the pinch refused, but the merge was not counted as beside the pinch (no face of the
+// pinch's among the faces it touched, only among those round its vertices), so it was
+// refused as well and the two edges stayed apart (rapidcheck seed 53 of
+// Beautify.InjectedDefectsOfTypes7To11AreRepaired).
+TEST(Pinch, ARepairUnsolvedOnlyBesideAnUnsolvedPinchIsMadeWhenThePinchIsRefused) {
+  std::string err;
+  auto doc = io::read_native_file(std::string(KINTSUGI_TEST_DATA_DIR) + "/native/pinch_unsolved_beside_a_merge.json", &err);
+  ASSERT_TRUE(doc) << err;
+  Body& b = doc->body;
+  const geo::Tolerances tol = geo::Tolerances::for_model(doc->meta.at("tolerance").get<double>(), model_size(b));
+  BeautifyReport rep = beautify(b, tol);
+  EXPECT_TRUE(check_topology(b).empty()) << describe(rep);
+  EXPECT_LE(check_geometry(b, tol.precision).max_deviation, tol.precision) << describe(rep);
+  const Detection d = detect(b, tol);
+  EXPECT_EQ(d.count(ProblemType::mergeable_edges), 0u) << describe(rep);
+  EXPECT_EQ(d.count(ProblemType::short_edge_chain), 0u) << describe(rep);
+  EXPECT_EQ(d.count(ProblemType::small_face_chain), 0u) << describe(rep);
+}
+
 }  // namespace
 }  // namespace kintsugi
