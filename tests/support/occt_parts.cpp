@@ -214,6 +214,62 @@ TopoDS_Shape filleted_post() {
   return fillet(s, curve_edges_where(s, circle_at(12)), 4);
 }
 
+// A block 80 x 60 x 40 with all twelve edges filleted r 6: cylinders tangent to the
+// planes, a sphere at each corner tangent to three cylinders (every edge a tangent one).
+TopoDS_Shape rounded_box() {
+  TopoDS_Shape s = box(0, 0, 0, 80, 60, 40);
+  std::vector<TopoDS_Edge> all;
+  for (const gp_Dir& d : {gp::DX(), gp::DY(), gp::DZ()})
+    for (const TopoDS_Edge& e : edges_where(s, d, [](const gp_Pnt&) { return true; })) all.push_back(e);
+  return fillet(s, all, 6);
+}
+
+// A plate 140 x 80 x 15 with a through slot 60 long, r 10 ends: two planes and two half
+// cylinders, tangent along four straight edges.
+TopoDS_Shape slotted_plate() {
+  TopoDS_Shape slot = fuse(box(40, 30, -5, 60, 20, 25), zcyl(40, 40, -5, 10, 25));
+  slot = fuse(slot, zcyl(100, 40, -5, 10, 25));
+  return cut(box(0, 0, 0, 140, 80, 15), slot);
+}
+
+// A stepped shaft: r 20 for 60, then r 12 for 50; the step's inner corner filleted r 3 (a
+// torus, concave) and the far end chamfered 2 (a cone).
+TopoDS_Shape stepped_shaft() {
+  auto circle_at = [](double z, double r) {
+    return [z, r](const Handle(Geom_Curve)& c, double a, double) {
+      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6 &&
+             std::abs(Handle(Geom_Circle)::DownCast(c)->Radius() - r) < 1e-6;
+    };
+  };
+  TopoDS_Shape s = fuse(zcyl(0, 0, 0, 20, 60), zcyl(0, 0, 60, 12, 50));
+  s = fillet(s, curve_edges_where(s, circle_at(60, 12)), 3);
+  return chamfer(s, curve_edges_where(s, circle_at(110, 12)), 2);
+}
+
+// A plate 100 x 100 x 20 with a through hole r 15, its top edge chamfered 3 (a cone) and
+// its bottom edge filleted 2 (a torus).
+TopoDS_Shape hole_plate() {
+  auto hole_circle_at = [](double z) {
+    return [z](const Handle(Geom_Curve)& c, double a, double) {
+      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6;
+    };
+  };
+  TopoDS_Shape s = cut(box(0, 0, 0, 100, 100, 20), zcyl(50, 50, -5, 15, 30));
+  s = chamfer(s, curve_edges_where(s, hole_circle_at(20)), 3);
+  return fillet(s, curve_edges_where(s, hole_circle_at(0)), 2);
+}
+
+// A base 100 x 100 x 20 carrying a cone frustum (r 30 -> 15 over 40), its foot filleted
+// r 5 (a torus between the top plane and the cone).
+TopoDS_Shape cone_boss() {
+  TopoDS_Shape s =
+      fuse(box(-50, -50, 0, 100, 100, 20), BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 20), gp::DZ()), 30, 15, 40).Shape());
+  return fillet(s, curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double) {
+                  return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - 20) < 1e-6;
+                }),
+                5);
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -232,6 +288,11 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"roofed_block", roofed_block},
       {"tee", tee},
       {"filleted_post", filleted_post},
+      {"rounded_box", rounded_box},
+      {"slotted_plate", slotted_plate},
+      {"stepped_shaft", stepped_shaft},
+      {"hole_plate", hole_plate},
+      {"cone_boss", cone_boss},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
