@@ -1,5 +1,6 @@
 #include "repair/gap_closing.h"
 
+#include "geometry/curve.h"
 #include "geometry/meet_point.h"
 #include "geometry/same_geometry.h"
 #include "geometry/surface.h"
@@ -76,6 +77,66 @@ bool isolated_meeting_point(const std::vector<geo::Surface>& ss, const geo::Meet
     if (!(off > 10 * tol.precision)) return false;
   }
   return true;
+}
+
+// Where the faces meet when they are all tangent there (their normals one direction: a
+// box rounded on every edge, whose flat face's corner is where two fillet cylinders and
+// the corner's sphere touch it): the surfaces alone leave the point free within the
+// tangent plane, so meet_point is underdetermined, but the curves of the edges that run
+// into the gap — where the faces meet pairwise, each a line or circle of contact — cross
+// there. Alternating projections onto those curves from `start`; the point is taken when
+// it is within the precision of every curve and of every surface, within
+// max_vertex_move() of every junction, and two of the curves cross at an angle there (so
+// it is one point, not a curve of them). Coplanar faces (a face split in four, its centre
+// vertex cut out by a gap) meet the same way: the gap closes in the vertex where the four
+// splitting edges cross, not with a new small face. (Scan parts,
+// rounded_box: such a gap was closed with two vertices 6e-5 apart, off the curves.)
+std::optional<geo::Vec3> where_edges_meet(const Body& b, const std::vector<VertexH>& junctions,
+                                          const std::vector<geo::Surface>& surfaces, geo::Vec3 start,
+                                          const geo::Tolerances& tol) {
+  std::vector<const geo::Curve*> curves;
+  for (VertexH v : junctions)
+    for (HalfedgeH o : b.outgoing(v))
+      if (!on_border(b, edge_of(o))) curves.push_back(&b.curve(edge_of(o)));
+  if (curves.size() < 2) return std::nullopt;
+  geo::Vec3 p = start;
+  for (int it = 0; it < 200; ++it) {
+    geo::Vec3 q = geo::Vec3::Zero();
+    for (const geo::Curve* c : curves) q += geo::closest_point(*c, p).point;
+    q /= double(curves.size());
+    const double step = (q - p).norm();
+    p = q;
+    if (!(step > 1e-3 * tol.precision)) break;
+  }
+  if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) return std::nullopt;
+  // Curves crossing at a glancing angle cross far away: each junction becomes this point,
+  // and a vertex moves at most max_vertex_move().
+  for (VertexH v : junctions)
+    if (!((b.point(v) - p).norm() <= tol.max_vertex_move())) return std::nullopt;
+  for (const geo::Curve* c : curves)
+    if (!(geo::closest_point(*c, p).distance <= tol.precision)) return std::nullopt;
+  for (const geo::Surface& s : surfaces)
+    if (!(std::abs(geo::signed_distance(s, p)) <= tol.precision)) return std::nullopt;
+  double crossing = 0;
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k) {
+      const geo::Vec3 ti = geo::tangent(*curves[i], geo::closest_point(*curves[i], p).t);
+      const geo::Vec3 tk = geo::tangent(*curves[k], geo::closest_point(*curves[k], p).t);
+      crossing = std::max(crossing, ti.cross(tk).norm());
+    }
+  if (!(crossing > 1e-3)) return std::nullopt;  // all along one direction: no single point
+  return p;
+}
+
+// The surfaces' normals at p nearly all along one direction (their second singular value
+// below a hundredth of the first): a meeting point there is ill-conditioned in the
+// tangent plane, however small its residual.
+bool nearly_tangent(const std::vector<geo::Surface>& ss, const geo::Vec3& p) {
+  if (ss.size() < 2) return false;
+  Eigen::MatrixXd normals(Eigen::Index(ss.size()), 3);
+  for (std::size_t i = 0; i < ss.size(); ++i) normals.row(Eigen::Index(i)) = geo::closest_point(ss[i], p).normal.transpose();
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(normals).singularValues();
+  return sv.size() >= 2 && sv(1) < 1e-2 * sv(0);
 }
 
 geo::Vec3 newell(const std::vector<geo::Vec3>& pts) {
@@ -314,6 +375,14 @@ GapClosure plan_multi_face_gap(const Body& b, const Gap& g, const geo::Tolerance
     const std::vector<geo::Surface> ss = surfaces_of(all);
     geo::MeetPoint m = geo::meet_point(ss, mean(0, k), tol.length, tol.precision);
     bool ok = meets(m) || isolated_meeting_point(ss, m, tol);
+    // Surfaces (nearly) tangent there meet within the precision over a stretch of the
+    // tangent plane: the point is where the edges' curves cross.
+    if ((ok || m.status == geo::MeetStatus::underdetermined) && nearly_tangent(ss, m.point))
+      if (auto p = where_edges_meet(b, jv, ss, m.point, tol)) {
+        m.point = *p, m.residual = 0.0;
+        for (const geo::Surface& s : ss) m.residual = std::max(m.residual, std::abs(geo::signed_distance(s, *p)));
+        ok = true;
+      }
     for (std::size_t i = 0; ok && i < k; ++i) ok = extends(b, jv[i], m.point);
     if (ok) {
       out.kind = GapClosure::one_vertex;
