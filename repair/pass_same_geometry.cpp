@@ -84,6 +84,18 @@ std::string repair_same_geometry(RepairContext& c) {
           alike.insert(n);
       }
   pts.insert(pts.end(), pg.begin(), pg.end());
+  // On a surface with a seam, two pieces split along two rulings (a face fitted in
+  // pieces round its axis) share both, and the one not killed stays as the merged face's
+  // seam. Keep the one whose ends carry the most edges: the killed one's ends are then
+  // left on two edges each and pass 10 joins them away, while the kept one's ends are
+  // vertices anyway (a chamfer's cone whose seam met the shaft's seam at one vertex kept
+  // another ruling, and the circle between them had a vertex too many: scan parts,
+  // stepped_shaft).
+  if (seam_frame(b.surface(f)) && common.size() > 1)
+    std::stable_sort(common.begin(), common.end(), [&](EdgeH x, EdgeH y) {
+      auto carried = [&](EdgeH e) { return b.degree(b.origin(halfedge_of(e, 0))) + b.degree(b.target(halfedge_of(e, 0))); };
+      return carried(x) < carried(y);
+    });
   // Kill the first common edge whose side in g is g's outer loop (kef's precondition);
   // else the other way round.
   HalfedgeH first;

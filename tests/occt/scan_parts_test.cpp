@@ -436,26 +436,41 @@ TEST(ScanParts, APlaneTangentToAFilletStaysTangentThroughARepair) { expect_case_
 // from where the edge was now goes the other way round.
 TEST(ScanParts, AnEdgeAtAFlatEllipsesTipTakesTheArcAlongTheEdge) { expect_case_passes(509, 207, 14); }
 
+// Case i of seed base `base` among the five parts added in session 30 alone
+// (KINTSUGI_SCAN_PARTS=rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss), on
+// part `name`.
+void expect_session30_case_passes(std::uint64_t base, int i, const std::string& name) {
+  std::vector<Designer> parts = designers();
+  const std::string only = ",rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss,";
+  std::erase_if(parts, [&](const Designer& d) { return only.find("," + d.name + ",") == std::string::npos; });
+  ASSERT_EQ(parts.size(), 5u) << "a designer part could not be built";
+  auto [d, types, seed] = plan(parts, base, i);
+  ASSERT_EQ(d->name, name);
+  std::string skip;
+  std::optional<CaseResult> r = run_case(*d, types, seed, &skip);
+  ASSERT_TRUE(r) << skip;
+  EXPECT_EQ(r->verdict, Verdict::pass) << r->detail;
+  EXPECT_EQ(r->detail, "") << "passed only despite a refusal";
+}
+
 // A multiple-face gap at a corner of a box rounded on every edge, where its flat face, two
 // fillet cylinders and the corner's sphere all touch (one normal for the four): meet_point
 // found a point within 2e-10 of every surface but 3.8e-5 off their contact curves (at a
 // tangent contact the distance grows with the square of the offset), and the validity gate
 // refused the vertex. Where the surfaces are nearly tangent the gap's vertex is now where
 // the curves of the edges running into it cross (`where_edges_meet`, repair/gap_closing.cpp).
-// The case is case 47 of seed base 1 among the five parts added in session 30
-// (KINTSUGI_SCAN_PARTS=rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss).
 TEST(ScanParts, AGapWhereFourTangentFacesMeetClosesWhereTheirEdgesCross) {
-  std::vector<Designer> parts = designers();
-  const std::string only = ",rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss,";
-  std::erase_if(parts, [&](const Designer& d) { return only.find("," + d.name + ",") == std::string::npos; });
-  ASSERT_EQ(parts.size(), 5u) << "a designer part could not be built";
-  auto [d, types, seed] = plan(parts, 1, 47);
-  ASSERT_EQ(d->name, "rounded_box");
-  std::string skip;
-  std::optional<CaseResult> r = run_case(*d, types, seed, &skip);
-  ASSERT_TRUE(r) << skip;
-  EXPECT_EQ(r->verdict, Verdict::pass) << r->detail;
-  EXPECT_EQ(r->detail, "") << "passed only despite a refusal";
+  expect_session30_case_passes(1, 47, "rounded_box");
+}
+
+// A chamfer's cone fitted three times round its axis (pieces split along rulings, one of
+// them the cone's seam, which meets the shaft cylinder's seam at one vertex of their
+// circle). Pass 8's second merge shares two rulings with the first, kills one and keeps
+// the other as the seam: it kept the wrong one, and the circle between cone and cylinder
+// kept a vertex for each seam (V7 E11, the designer's V6 E10). The ruling whose ends carry
+// more edges is now kept (pass_same_geometry.cpp).
+TEST(ScanParts, MergedPiecesOfAConeKeepTheSeamThatMeetsTheShaftsSeam) {
+  expect_session30_case_passes(3, 35, "stepped_shaft");
 }
 
 // The same bracket's pinch on other seed bases: its plate's plane is tangent to a rounded
