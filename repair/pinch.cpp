@@ -173,6 +173,38 @@ std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerance
 
 }  // namespace
 
+namespace {
+
+// Zipping on along a side that folds back (a tilted boss's ring zipped edge after edge
+// against a plate's side) can leave a chain of edges hanging into a face: each with the
+// face on both sides, the last ending at a vertex on no other edge. That is a spike of
+// width 0 — what the spiking repair drops — and it was left for pass 11, whose collapse of
+// it then made the vertex it hung from mergeable: a type fixed before pass 11 (the Table 1
+// audit, run 4c0c630, shard 9309: paper6 with a pinch, a face fitted twice and a short
+// edge). The chain is killed from its hanging end (kev), among the edges and vertices the
+// repair touched.
+std::string drop_hanging_edges(Body& b, Touched& touched) {
+  std::vector<VertexH> look(touched.vertices.begin(), touched.vertices.end());
+  for (EdgeH e : touched.edges)
+    if (b.alive(e)) look.push_back(b.origin(halfedge_of(e, 0))), look.push_back(b.target(halfedge_of(e, 0)));
+  while (!look.empty()) {
+    VertexH v = look.back();
+    look.pop_back();
+    if (!b.alive(v)) continue;
+    const std::vector<HalfedgeH> out = b.outgoing(v);
+    if (out.size() != 1) continue;
+    const VertexH w = b.target(out[0]);
+    auto r = euler::kev(b, twin(out[0]));  // kills v, the hanging end
+    if (!r) return refused("kev", r.error());
+    touched.vertices.erase(v);
+    touched.vertices.insert(w);
+    look.push_back(w);
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched) {
   std::vector<VertexH> merged;
   std::string why = close_one(b, f, ea, eb, tol, touched, &merged);
@@ -190,6 +222,7 @@ std::string close_pinch(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Toleran
       break;
     }
   }
+  if (why.empty()) why = drop_hanging_edges(b, touched);
   return why;
 }
 
