@@ -287,22 +287,6 @@ Touched alive_part(const Body& b, const Touched& t) {
   return out;
 }
 
-// The faces a region solve over `t` takes in (detail::solve_region): those touched, round
-// the touched vertices and along the touched edges that are still alive.
-std::set<FaceH> solved_faces(const Body& b, const Touched& t) {
-  std::set<FaceH> out;
-  for (FaceH f : t.faces)
-    if (b.alive(f)) out.insert(f);
-  for (VertexH v : t.vertices)
-    if (b.alive(v))
-      for (FaceH f : detail::faces_around(b, v)) out.insert(f);
-  for (EdgeH e : t.edges)
-    if (b.alive(e))
-      for (unsigned s = 0; s < 2; ++s)
-        if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) out.insert(f);
-  return out;
-}
-
 // Solves again, each in its own transaction, the regions of repairs kept at the tolerance
 // only. What made their solve fail then is often gone now: two nearly coincident faces
 // beside a pinch make a vertex ill-conditioned until pass 8 merges them. A region that
@@ -476,7 +460,7 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
   // run: rapidcheck seed 53 of Beautify.InjectedDefectsOfTypes7To11AreRepaired.)
   std::set<FaceH> near_unsolved;
   for (const Unsettled& u : unsettled) {
-    const std::set<FaceH> faces = solved_faces(b, u.touched);
+    const std::set<FaceH> faces = detail::region_faces(b, u.touched);
     bool beside = false;
     for (FaceH f : faces) beside = beside || near_unsolved.count(f);
     near_unsolved.insert(faces.begin(), faces.end());

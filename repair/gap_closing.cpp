@@ -81,16 +81,17 @@ bool isolated_meeting_point(const std::vector<geo::Surface>& ss, const geo::Meet
 
 // Where the faces meet when they are all tangent there (their normals one direction: a
 // box rounded on every edge, whose flat face's corner is where two fillet cylinders and
-// the corner's sphere touch it): the surfaces alone leave the point free within the
-// tangent plane, so meet_point is underdetermined, but the curves of the edges that run
-// into the gap — where the faces meet pairwise, each a line or circle of contact — cross
-// there. Alternating projections onto those curves from `start`; the point is taken when
+// the corner's sphere touch it): the surfaces alone pin the point only loosely within the
+// tangent plane (meet_point is underdetermined, or finds a point within the precision of
+// every surface but off where they touch), but the curves of the edges that run into the
+// gap — where the faces meet pairwise, each a line or circle of contact — cross there. Alternating projections onto those curves from `start`; the point is taken when
 // it is within the precision of every curve and of every surface, within
 // max_vertex_move() of every junction, and two of the curves cross at an angle there (so
 // it is one point, not a curve of them). Coplanar faces (a face split in four, its centre
 // vertex cut out by a gap) meet the same way: the gap closes in the vertex where the four
-// splitting edges cross, not with a new small face. (Scan parts,
-// rounded_box: such a gap was closed with two vertices 6e-5 apart, off the curves.)
+// splitting edges cross, not with a new small face. (Scan parts, rounded_box: such a gap
+// was closed in a vertex 2e-10 from the four surfaces but 3.8e-5 off their contact
+// curves, and the validity gate refused it.)
 std::optional<geo::Vec3> where_edges_meet(const Body& b, const std::vector<VertexH>& junctions,
                                           const std::vector<geo::Surface>& surfaces, geo::Vec3 start,
                                           const geo::Tolerances& tol) {

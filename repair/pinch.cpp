@@ -171,10 +171,6 @@ bool runs_beside(const Body& b, HalfedgeH p, HalfedgeH h, const geo::Tolerances&
 std::string close_one(Body& b, FaceH f, EdgeH ea, EdgeH eb, const geo::Tolerances& tol, Touched& touched,
                       std::vector<VertexH>* merged);
 
-}  // namespace
-
-namespace {
-
 // Zipping on along a side that folds back (a tilted boss's ring zipped edge after edge
 // against a plate's side) can leave a chain of edges hanging into a face: each with the
 // face on both sides, the last ending at a vertex on no other edge. That is a spike of

@@ -235,6 +235,20 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
   return out;
 }
 
+std::set<FaceH> region_faces(const Body& b, const Touched& touched) {
+  std::set<FaceH> region;
+  for (VertexH v : touched.vertices)
+    if (b.alive(v))
+      for (FaceH f : faces_around(b, v)) region.insert(f);
+  for (EdgeH e : touched.edges)
+    if (b.alive(e))
+      for (unsigned s = 0; s < 2; ++s)
+        if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) region.insert(f);
+  for (FaceH f : touched.faces)
+    if (b.alive(f)) region.insert(f);
+  return region;
+}
+
 RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
                          bool weigh_zipped_by_area) {
   const auto start = std::chrono::steady_clock::now();
@@ -248,19 +262,10 @@ namespace {
 RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces& original, const geo::Tolerances& tol,
                                  bool weigh_zipped_by_area) {
   RegionSolve out;
-  std::set<FaceH> region;
+  const std::set<FaceH> region = region_faces(b, touched);
   std::set<VertexH> verts;
   for (VertexH v : touched.vertices)
-    if (b.alive(v)) {
-      verts.insert(v);
-      for (FaceH f : faces_around(b, v)) region.insert(f);
-    }
-  for (EdgeH e : touched.edges)
-    if (b.alive(e))
-      for (unsigned s = 0; s < 2; ++s)
-        if (FaceH f = b.face(halfedge_of(e, s)); f.valid()) region.insert(f);
-  for (FaceH f : touched.faces)
-    if (b.alive(f)) region.insert(f);
+    if (b.alive(v)) verts.insert(v);
 
   // The solved faces: surfaces known from before the repair, not too large.
   std::vector<FaceH> faces;

@@ -50,6 +50,10 @@ struct RegionSolve {
   double seconds = 0.0;             // wall time of the solve (docs/benchmarks.md)
 };
 
+// The region of `touched` that solve_region takes in: its live faces and the faces around
+// its live vertices and along its live edges.
+std::set<FaceH> region_faces(const Body& b, const Touched& touched);
+
 // Solves the region of `touched` (the faces around its vertices and edges, and its faces)
 // and, on success, writes the solved surfaces, vertices and re-derived edge curves into b
 // and records them in `touched`. When the constraints cannot be met (or force a surface
