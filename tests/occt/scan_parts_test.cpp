@@ -436,13 +436,18 @@ TEST(ScanParts, APlaneTangentToAFilletStaysTangentThroughARepair) { expect_case_
 // from where the edge was now goes the other way round.
 TEST(ScanParts, AnEdgeAtAFlatEllipsesTipTakesTheArcAlongTheEdge) { expect_case_passes(509, 207, 14); }
 
+// Keeps the parts named in `names` (comma-separated).
+void keep_only(std::vector<Designer>& parts, const std::string& names) {
+  const std::string only = "," + names + ",";
+  std::erase_if(parts, [&](const Designer& d) { return only.find("," + d.name + ",") == std::string::npos; });
+}
+
 // Case i of seed base `base` among the five parts added in session 30 alone
 // (KINTSUGI_SCAN_PARTS=rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss), on
 // part `name`.
 void expect_session30_case_passes(std::uint64_t base, int i, const std::string& name) {
   std::vector<Designer> parts = designers();
-  const std::string only = ",rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss,";
-  std::erase_if(parts, [&](const Designer& d) { return only.find("," + d.name + ",") == std::string::npos; });
+  keep_only(parts, "rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss");
   ASSERT_EQ(parts.size(), 5u) << "a designer part could not be built";
   auto [d, types, seed] = plan(parts, base, i);
   ASSERT_EQ(d->name, name);
@@ -526,8 +531,7 @@ TEST(ScanParts, ScoreTable) {
   ASSERT_GE(parts.size(), 8u) << "fewer than 8 designer parts could be built and read";
   // KINTSUGI_SCAN_PARTS=a,b,...: only those parts (to look at a few closely).
   if (const char* e = std::getenv("KINTSUGI_SCAN_PARTS")) {
-    const std::string only = std::string(",") + e + ",";
-    std::erase_if(parts, [&](const Designer& d) { return only.find("," + d.name + ",") == std::string::npos; });
+    keep_only(parts, e);
     ASSERT_FALSE(parts.empty()) << "KINTSUGI_SCAN_PARTS names no part that could be built: " << e;
   }
   for (const Designer& d : parts)

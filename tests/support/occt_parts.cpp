@@ -91,6 +91,14 @@ std::vector<TopoDS_Edge> curve_edges_where(const TopoDS_Shape& s, Pick pick) {
   return out;
 }
 
+// A pick for curve_edges_where: circles at height z (of radius r, when r > 0).
+auto circle_at(double z, double r = 0) {
+  return [z, r](const Handle(Geom_Curve)& c, double a, double) {
+    return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6 &&
+           (r <= 0 || std::abs(Handle(Geom_Circle)::DownCast(c)->Radius() - r) < 1e-6);
+  };
+}
+
 TopoDS_Shape fillet(const TopoDS_Shape& s, const std::vector<TopoDS_Edge>& edges, double r) {
   if (edges.empty()) throw std::runtime_error("no edges to fillet");
   BRepFilletAPI_MakeFillet f(s);
@@ -204,11 +212,6 @@ TopoDS_Shape tee() {
 // A post r 25, 50 high, on a plate 100 x 100 x 12, with its top edge filleted r 6 (a
 // torus between the post's side and its top, tangent to both) and its foot filleted r 4.
 TopoDS_Shape filleted_post() {
-  auto circle_at = [](double z) {
-    return [z](const Handle(Geom_Curve)& c, double a, double) {
-      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6;
-    };
-  };
   TopoDS_Shape s = fuse(box(-50, -50, 0, 100, 100, 12), zcyl(0, 0, 12, 25, 50));
   s = fillet(s, curve_edges_where(s, circle_at(62)), 6);
   return fillet(s, curve_edges_where(s, circle_at(12)), 4);
@@ -235,12 +238,6 @@ TopoDS_Shape slotted_plate() {
 // A stepped shaft: r 20 for 60, then r 12 for 50; the step's inner corner filleted r 3 (a
 // torus, concave) and the far end chamfered 2 (a cone).
 TopoDS_Shape stepped_shaft() {
-  auto circle_at = [](double z, double r) {
-    return [z, r](const Handle(Geom_Curve)& c, double a, double) {
-      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6 &&
-             std::abs(Handle(Geom_Circle)::DownCast(c)->Radius() - r) < 1e-6;
-    };
-  };
   TopoDS_Shape s = fuse(zcyl(0, 0, 0, 20, 60), zcyl(0, 0, 60, 12, 50));
   s = fillet(s, curve_edges_where(s, circle_at(60, 12)), 3);
   return chamfer(s, curve_edges_where(s, circle_at(110, 12)), 2);
@@ -249,14 +246,9 @@ TopoDS_Shape stepped_shaft() {
 // A plate 100 x 100 x 20 with a through hole r 15, its top edge chamfered 3 (a cone) and
 // its bottom edge filleted 2 (a torus).
 TopoDS_Shape hole_plate() {
-  auto hole_circle_at = [](double z) {
-    return [z](const Handle(Geom_Curve)& c, double a, double) {
-      return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - z) < 1e-6;
-    };
-  };
   TopoDS_Shape s = cut(box(0, 0, 0, 100, 100, 20), zcyl(50, 50, -5, 15, 30));
-  s = chamfer(s, curve_edges_where(s, hole_circle_at(20)), 3);
-  return fillet(s, curve_edges_where(s, hole_circle_at(0)), 2);
+  s = chamfer(s, curve_edges_where(s, circle_at(20)), 3);
+  return fillet(s, curve_edges_where(s, circle_at(0)), 2);
 }
 
 // A base 100 x 100 x 20 carrying a cone frustum (r 30 -> 15 over 40), its foot filleted
@@ -264,10 +256,7 @@ TopoDS_Shape hole_plate() {
 TopoDS_Shape cone_boss() {
   TopoDS_Shape s =
       fuse(box(-50, -50, 0, 100, 100, 20), BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 20), gp::DZ()), 30, 15, 40).Shape());
-  return fillet(s, curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double) {
-                  return c->IsKind(STANDARD_TYPE(Geom_Circle)) && std::abs(c->Value(a).Z() - 20) < 1e-6;
-                }),
-                5);
+  return fillet(s, curve_edges_where(s, circle_at(20)), 5);
 }
 
 }  // namespace
