@@ -31,6 +31,7 @@
 #include "geometry/meet_point.h"
 #include "kernel/euler.h"
 #include "repair/beautify_detail.h"
+#include "repair/detect_detail.h"
 #include "repair/face_collapse.h"
 
 #include <algorithm>
@@ -329,7 +330,19 @@ std::string repair_small_face_chain(RepairContext& c) {
     guesses.push_back({v, n.centroid[std::size_t(i)]});
     for (FaceH g : faces_around(b, v)) c.touched.faces.insert(g);
   }
-  if (std::string why = place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched); !why.empty()) return why;
+  if (std::string why = place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched); !why.empty()) {
+    // A small face or a sliver beside the chain (a strip of small faces along an edge, some
+    // of which a nearby repair made larger) has a plane fitted to a few points, nearly
+    // parallel to the edge the chain stands for: where it meets that edge is
+    // ill-conditioned (scan parts, roofed_block 1201003614: 0.49 down the edge at a
+    // tolerance of 0.069). Its own pass removes it later; the vertices go where the other
+    // faces meet, and the region solve tilts its plane through them.
+    std::set<FaceH> minor;
+    for (auto [v, guess] : guesses)
+      for (FaceH g : faces_around(b, v))
+        if (FaceInfo fi = measure_face(b, g, c.tol, c.tol.measure_chordal()); fi.small || fi.sliver) minor.insert(g);
+    if (minor.empty() || !place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched, minor).empty()) return why;
+  }
   return drop_free_vertices(b, kept, c);
 }
 
