@@ -9,7 +9,9 @@
 //   - its faces match the designer's one to one (each output face to the designer face its
 //     tessellation lies nearest to on average) and the matched faces share edges exactly
 //     where the designer's do;
-//   - the two-sided distance to the designer's part is within the tolerance.
+//   - the two-sided distance to the designer's part is within the tolerance;
+//   - written as STEP the way the command line writes it, OpenCASCADE's reader finds one
+//     valid closed solid in the file, and ours reads back the same counts ("step" if not).
 // The table printed per problem type says how many cases passed and why the others failed.
 // KINTSUGI_SCAN_CASES=N runs N cases instead of the default (scripts/scan_parts_score.sh).
 #include "geometry/tolerance.h"
@@ -32,7 +34,13 @@
 #include <CGAL/Simple_cartesian.h>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRep_Tool.hxx>
+#include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 
 #include <gtest/gtest.h>
 
@@ -170,6 +178,23 @@ std::string describe_left(const BeautifyReport& r) {
   return s;
 }
 
+// A written STEP file as OpenCASCADE's reader sees it: "" when it holds one solid with one
+// closed shell that BRepCheck finds valid, else what is wrong.
+std::string written_step_problem(const std::string& path) {
+  STEPControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) return "unreadable";
+  if (reader.TransferRoots() == 0) return "no shape transferred";
+  const TopoDS_Shape shape = reader.OneShape();
+  TopTools_IndexedMapOfShape solids, shells;
+  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+  TopExp::MapShapes(shape, TopAbs_SHELL, shells);
+  if (solids.Extent() != 1 || shells.Extent() != 1)
+    return std::to_string(solids.Extent()) + " solids, " + std::to_string(shells.Extent()) + " shells";
+  if (!BRep_Tool::IsClosed(shells(1))) return "the shell is open";
+  if (!BRepCheck_Analyzer(shape).IsValid()) return "BRepCheck_Analyzer: invalid";
+  return "";
+}
+
 // One case: the defects, the motion, the STEP round trip, beautify, the judgement.
 // nullopt when the case cannot be made (no place for the defect in this part, or the
 // designer's part has problems of its own at this tolerance); *skip says which.
@@ -301,6 +326,18 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
     o << "two-sided distance " << ts.max() << " > " << t;
     return judged(Verdict::far, o.str());
   }
+  // What a user gets is the file: written as the command line writes it (the shape's
+  // tolerances the precision), read back by OpenCASCADE's reader as another program
+  // would, it must be one valid closed solid, and read by us, the same counts.
+  const std::string written = test::temp_path("scan_" + std::to_string(seed) + ".out.step");
+  if (!io::export_cad(out, written, io::CadFormat::step, &err, "mm", run_tol.precision))
+    return judged(Verdict::step, "output not written: " + err);
+  std::string unread = written_step_problem(written);
+  std::optional<io::CadImport> back = io::import_cad(written, io::CadFormat::step, &err);
+  if (!std::getenv("KINTSUGI_SCAN_KEEP")) std::remove(written.c_str());
+  if (!unread.empty()) return judged(Verdict::step, "output as read by OpenCASCADE: " + unread);
+  if (!back) return judged(Verdict::step, "output read back: " + err);
+  if (!(back->body.counts() == c)) return judged(Verdict::step, "output read back: " + str(back->body.counts()) + " written " + str(c));
   if (!left.empty()) res.detail = id.str() + ": passed although " + left;
   return res;
 }
