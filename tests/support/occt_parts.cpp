@@ -259,6 +259,31 @@ TopoDS_Shape cone_boss() {
   return fillet(s, curve_edges_where(s, circle_at(20)), 5);
 }
 
+// A rod r 8 bent through a right angle on a plate 80 x 60 x 10: a vertical cylinder 30
+// high, a quarter torus (major radius 25) and a horizontal cylinder 40 long, tangent to
+// each other along circles; the rod's foot filleted r 3 (a torus round the first one).
+TopoDS_Shape bent_rod() {
+  const double r = 8, bend = 25;
+  TopoDS_Shape s = fuse(box(-30, -30, 0, 80, 60, 10), zcyl(0, 0, 10, r, 30));
+  const gp_Ax2 torus_frame(gp_Pnt(bend, 0, 40), gp::DY(), gp::DX().Reversed());  // sweeps from -x up to +z
+  s = fuse(s, BRepPrimAPI_MakeTorus(torus_frame, bend, r, M_PI / 2).Shape());
+  s = fuse(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(bend, 0, 40 + bend), gp::DX()), r, 40).Shape());
+  return fillet(s, curve_edges_where(s, circle_at(10, r)), 3);
+}
+
+// A block 100 x 60 x 30 with a capsule-shaped pocket in its top: a horizontal cylinder
+// r 12 (axis 4 below the top, 50 long) with a sphere at each end, cut out: concave sphere
+// and cylinder faces tangent along circles, meeting the top plane in lines and arcs.
+TopoDS_Shape capsule_block() {
+  const double r = 12, z = 26;
+  TopoDS_Shape capsule = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(25, 30, z), gp::DX()), r, 50).Shape();
+  // The spheres' poles on the capsule's axis, their seams rising to the top: with the
+  // poles up, the boolean split each end in two along its seam, which unification left.
+  capsule = fuse(capsule, BRepPrimAPI_MakeSphere(gp_Ax2(gp_Pnt(25, 30, z), gp::DX(), gp::DZ()), r).Shape());
+  capsule = fuse(capsule, BRepPrimAPI_MakeSphere(gp_Ax2(gp_Pnt(75, 30, z), gp::DX(), gp::DZ()), r).Shape());
+  return cut(box(0, 0, 0, 100, 60, 30), capsule);
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -282,6 +307,8 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"stepped_shaft", stepped_shaft},
       {"hole_plate", hole_plate},
       {"cone_boss", cone_boss},
+      {"bent_rod", bent_rod},
+      {"capsule_block", capsule_block},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
