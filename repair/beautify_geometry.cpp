@@ -127,6 +127,40 @@ bool still_on_both(const geo::Curve& old, const geo::Vec3& p0, const geo::Vec3& 
          on_both_between(old, p0, p1, closed, sf, sg, tol);
 }
 
+// The curve of another edge between the same two faces at one of h's vertices, oriented
+// along h, when it lies on both surfaces from p0 to p1 (of its two senses, the arc whose
+// middle is nearest the middle of h's present curve): the rest of a fillet's contact
+// circle beside a gap closed across it. Where the faces are tangent their intersection is
+// a double root, which intersect() found only to 1e-3 off a torus tangent to a cylinder
+// (scan parts bent_rod 4000025); the neighbour's curve is exact.
+std::optional<geo::Curve> neighbours_curve(const Body& b, HalfedgeH h, const geo::Vec3& p0, const geo::Vec3& p1,
+                                           bool closed, const geo::Surface& sf, const geo::Surface& sg,
+                                           const geo::Tolerances& tol) {
+  const FaceH f = b.face(h), g = b.face(twin(h));
+  std::optional<geo::Curve> best;
+  double best_d = HUGE_VAL;
+  std::optional<geo::Vec3> mid;
+  for (VertexH v : {b.origin(h), b.target(h)})
+    for (HalfedgeH o : b.outgoing(v)) {
+      if (edge_of(o) == edge_of(h)) continue;
+      const FaceH a = b.face(o), c = b.face(twin(o));
+      if (!((a == f && c == g) || (a == g && c == f))) continue;
+      const geo::Curve& nc = b.curve(edge_of(o));
+      if (!std::holds_alternative<geo::Line>(nc) && !std::holds_alternative<geo::Circle>(nc)) continue;
+      for (const geo::Curve& k : {nc, reversed(nc)}) {
+        if (!on_both_between(k, p0, p1, closed, sf, sg, tol)) continue;
+        if (!mid) {
+          const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
+          mid = along.empty() ? geo::Vec3(0.5 * (p0 + p1)) : along[along.size() / 2];
+        }
+        const geo::ParameterRange r = geo::parameter_range(k, p0, p1, closed ? tol.precision : 0.0);
+        const double d = (geo::evaluate(k, 0.5 * (r.t0 + r.t1)) - *mid).norm();
+        if (d < best_d) best_d = d, best = k;
+      }
+    }
+  return best;
+}
+
 // An intersection polyline cut to the edge's own piece, from p0 to p1 along it: a
 // marched branch is a closed loop or runs past the edge's vertices, and the writer takes
 // a polyline whole (two cylinders' loop joined from two halves at a mergeable vertex could
@@ -331,6 +365,7 @@ std::optional<geo::Curve> derive_edge_curve(const Body& b, EdgeH e, const geo::T
     if (on) return geo::Curve{geo::Line{p0, (p1 - p0).normalized()}};
   }
   if (still_on_both(old, p0, p1, closed, sf, sg, tol)) return old;
+  if (auto c = neighbours_curve(b, h, p0, p1, closed, sf, sg, tol)) return *c;
   // The region: the vertices and the present curve, with a margin.
   geo::Box region;
   region.add(p0);
