@@ -148,6 +148,8 @@ std::optional<geo::Curve> neighbours_curve(const Body& b, HalfedgeH h, const geo
       const geo::Curve& nc = b.curve(edge_of(o));
       if (!std::holds_alternative<geo::Line>(nc) && !std::holds_alternative<geo::Circle>(nc)) continue;
       for (const geo::Curve& k : {nc, reversed(nc)}) {
+        // A line's two senses run over the same segment: the one from p0 towards p1.
+        if (std::holds_alternative<geo::Line>(k) && std::get<geo::Line>(k).direction.dot(p1 - p0) <= 0) continue;
         if (!on_both_between(k, p0, p1, closed, sf, sg, tol)) continue;
         if (!mid) {
           const std::vector<geo::Vec3> along = halfedge_polyline(b, h, tol.region_chordal());
