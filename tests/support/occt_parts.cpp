@@ -1,12 +1,16 @@
 #include "tests/support/occt_parts.h"
 
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepPrimAPI_MakeWedge.hxx>
@@ -284,6 +288,42 @@ TopoDS_Shape capsule_block() {
   return cut(box(0, 0, 0, 100, 60, 30), capsule);
 }
 
+// A hex nut 80 across the flats, 30 high, bore r 18, its top corners chamfered the way a
+// nut's are: kept inside a cone (35 degrees to the top, r 40.5 at the top), which leaves a
+// cone face at each of the six corners, bounded by hyperbolas on the flats.
+TopoDS_Shape hex_nut() {
+  const double across = 80, h = 30, top_r = 40.5, slope = std::tan(35 * M_PI / 180);
+  const double R = across / std::sqrt(3.0);
+  BRepBuilderAPI_MakePolygon hex;
+  for (int i = 0; i < 6; ++i) hex.Add(gp_Pnt(R * std::cos(i * M_PI / 3), R * std::sin(i * M_PI / 3), 0));
+  hex.Close();
+  TopoDS_Shape prism = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(hex.Wire()).Face(), gp_Vec(0, 0, h)).Shape();
+  const double bottom_r = top_r + (h + 1) / slope;  // the cone reaches 1 below the nut
+  TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), bottom_r, top_r, h + 1).Shape();
+  BRepAlgoAPI_Common common(prism, cone);
+  if (!common.IsDone()) throw std::runtime_error("common failed");
+  return cut(unify(common.Shape()), zcyl(0, 0, -5, 18, h + 10));
+}
+
+// A block 90 x 70 x 40 with its vertical edges filleted r 10, then its top loop (four
+// lines and four arcs, tangent to each other) chamfered 4: planes and cones in turn round
+// the top, meeting the fillets' cylinders.
+TopoDS_Shape filleted_chamfered_block() {
+  TopoDS_Shape s = box(0, 0, 0, 90, 70, 40);
+  s = fillet(s, edges_where(s, gp::DZ(), [](const gp_Pnt&) { return true; }), 10);
+  std::vector<TopoDS_Edge> top = curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double b) {
+    return std::abs(c->Value(a).Z() - 40) < 1e-6 && std::abs(c->Value(b).Z() - 40) < 1e-6;
+  });
+  return chamfer(s, top, 4);
+}
+
+// A block 100 x 80 x 60 with a vertical bore r 15 and a horizontal bore r 10 along x whose
+// axes cross: two cylinders of different radii meeting inside in closed B-spline curves.
+TopoDS_Shape cross_bore_block() {
+  TopoDS_Shape s = cut(box(0, 0, 0, 100, 80, 60), zcyl(50, 40, -5, 15, 70));
+  return cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-5, 40, 30), gp::DX()), 10, 110).Shape());
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -309,6 +349,9 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"cone_boss", cone_boss},
       {"bent_rod", bent_rod},
       {"capsule_block", capsule_block},
+      {"hex_nut", hex_nut},
+      {"filleted_chamfered_block", filleted_chamfered_block},
+      {"cross_bore_block", cross_bore_block},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
