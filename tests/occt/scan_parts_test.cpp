@@ -368,12 +368,15 @@ std::vector<Designer> designers() {
 // 0-10 of every twelve cases are the eleven types in turn, slot 11 two or three random
 // types; the parts rotate so that each type meets every part.
 // `rotation`: how many of the parts (from the first) the cases rotate through; the
-// regression cases below were found when there were kFirstParts.
+// regression cases below were found when there were kFirstParts. `all_multi`: every case
+// two or three random types (KINTSUGI_SCAN_MULTI=1: defects together are where repairs
+// meet each other's results).
 std::tuple<const Designer*, std::vector<ProblemType>, std::uint64_t> plan(const std::vector<Designer>& parts,
                                                                          std::uint64_t base, int i,
-                                                                         std::size_t rotation = 0) {
+                                                                         std::size_t rotation = 0,
+                                                                         bool all_multi = false) {
   const std::uint64_t seed = base * 1000003ull + std::uint64_t(i);
-  const int slot = i % 12;
+  const int slot = all_multi ? 11 : i % 12;
   if (rotation == 0 || rotation > parts.size()) rotation = parts.size();
   const Designer* d = &parts[std::size_t(i / 12 + i) % rotation];
   std::vector<ProblemType> types;
@@ -631,10 +634,13 @@ TEST(ScanParts, ScoreTable) {
   int first = 0;
   if (const char* e = std::getenv("KINTSUGI_SCAN_FIRST")) first = std::max(0, std::atoi(e));
 
+  const char* multi = std::getenv("KINTSUGI_SCAN_MULTI");
+  const bool all_multi = multi && std::string(multi) == "1";
+
   std::vector<CaseResult> results;
   std::vector<std::string> skipped;
   for (int i = first; i < first + n; ++i) {
-    auto [d, types, seed] = plan(parts, base, i);
+    auto [d, types, seed] = plan(parts, base, i, 0, all_multi);
     std::string skip;
     std::optional<CaseResult> r = run_case(*d, types, seed, &skip);
     if (r)
