@@ -12,6 +12,8 @@
 #include "repair/beautify_detail.h"
 
 #include <cmath>
+#include <map>
+#include <set>
 #include <variant>
 
 namespace kintsugi::detail {
@@ -90,12 +92,32 @@ std::string repair_same_geometry(RepairContext& c) {
   // left on two edges each and pass 10 joins them away, while the kept one's ends are
   // vertices anyway (a chamfer's cone whose seam met the shaft's seam at one vertex kept
   // another ruling, and the circle between them had a vertex too many: scan parts,
-  // stepped_shaft).
-  if (seam_frame(b.surface(f)) && common.size() > 1)
-    std::stable_sort(common.begin(), common.end(), [&](EdgeH x, EdgeH y) {
-      auto carried = [&](EdgeH e) { return b.degree(b.origin(halfedge_of(e, 0))) + b.degree(b.target(halfedge_of(e, 0))); };
-      return carried(x) < carried(y);
-    });
+  // stepped_shaft). A ruling may be several common edges, joined at vertices on no other
+  // edge (a gap closed across it, for pass 10 to join): its ends are those of the run
+  // (scan parts, cone_boss with a gap on the seam: its middle piece, whose own ends carry
+  // two edges each, was killed first, and the ruling with it).
+  if (seam_frame(b.surface(f)) && common.size() > 1) {
+    const std::set<EdgeH> in_common(common.begin(), common.end());
+    // The far end of the run of common edges leaving v along e.
+    auto run_end = [&](VertexH v, EdgeH e) {
+      for (std::size_t guard = 0; guard < common.size(); ++guard) {
+        auto outs = b.outgoing(v);
+        if (outs.size() != 2) break;
+        const EdgeH next = edge_of(outs[0]) == e ? edge_of(outs[1]) : edge_of(outs[0]);
+        if (next == e || !in_common.count(next)) break;
+        const HalfedgeH h = halfedge_of(next, 0);
+        v = b.origin(h) == v ? b.target(h) : b.origin(h);
+        e = next;
+      }
+      return v;
+    };
+    std::map<EdgeH, std::size_t> carried;
+    for (EdgeH e : common) {
+      const HalfedgeH h = halfedge_of(e, 0);
+      carried[e] = b.degree(run_end(b.origin(h), e)) + b.degree(run_end(b.target(h), e));
+    }
+    std::stable_sort(common.begin(), common.end(), [&](EdgeH x, EdgeH y) { return carried[x] < carried[y]; });
+  }
   // Kill the first common edge whose side in g is g's outer loop (kef's precondition);
   // else the other way round.
   HalfedgeH first;

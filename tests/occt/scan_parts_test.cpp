@@ -503,6 +503,33 @@ void expect_session30_case_passes(std::uint64_t base, int i, const std::string& 
   expect_case_of_parts_passes("rounded_box,slotted_plate,stepped_shaft,hole_plate,cone_boss", base, i, name);
 }
 
+// Case i of seed base `base` with every case two or three defects (KINTSUGI_SCAN_MULTI=1),
+// the cases rotating through the first `rotation` parts.
+void expect_multi_case_passes(std::uint64_t base, int i, std::size_t rotation, const std::string& name) {
+  std::vector<Designer> parts = designers();
+  ASSERT_GE(parts.size(), rotation) << "a designer part could not be built";
+  auto [d, types, seed] = plan(parts, base, i, rotation, /*all_multi=*/true);
+  ASSERT_EQ(d->name, name);
+  std::string skip;
+  std::optional<CaseResult> r = run_case(*d, types, seed, &skip, /*occt_gate=*/true);
+  ASSERT_TRUE(r) << skip;
+  EXPECT_EQ(r->verdict, Verdict::pass) << r->detail;
+  EXPECT_EQ(r->detail, "") << "passed only despite a refusal";
+}
+
+// A cone (cone_boss) and a cylinder (tee) each fitted twice, split along two rulings, one
+// of them also cut by a gap (cone_boss) or by a vertex a mergeable-edges defect put on it
+// (tee). Pass 8 keeps as the merged face's seam the ruling whose ends carry more edges,
+// but counted the ends of each piece: the gap's closed edge, whose own ends lay on two
+// edges each, was killed first and its whole ruling with it — the one where the fillet's
+// torus seam (the stub's circle) met the circle. The kept ruling met the circle elsewhere,
+// and the circle came out with a vertex too many. The ends are now those of the run of
+// common edges (pass_same_geometry.cpp).
+TEST(ScanParts, AMergedFaceKeepsAsItsSeamTheRulingWhoseRunEndsCarryMoreEdges) {
+  expect_multi_case_passes(2, 17, 24, "cone_boss");
+  expect_multi_case_passes(2, 78, 24, "tee");
+}
+
 // A multiple-face gap at a corner of a box rounded on every edge, where its flat face, two
 // fillet cylinders and the corner's sphere all touch (one normal for the four): meet_point
 // found a point within 2e-10 of every surface but 3.8e-5 off their contact curves (at a
