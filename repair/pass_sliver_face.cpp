@@ -222,14 +222,31 @@ geo::Vec3 on_both_at_its_angle(const geo::Surface& side, const geo::Surface& cap
 // killed (kef), the band joining the face across it; the seam's vertex on c1, now on
 // that face's seam and the band's only, is joined away (jekv), so the seams make one;
 // the vertex on c2 goes to where the two faces meet (place_vertices), and c2 and the
-// seam get the curves there. Applies when both closed edges are single edges (the seams
-// of the band and of the face across c1 meet c1 at one vertex, as OpenCASCADE's
-// chamfers and fillets of a circle make them); nullopt when f is not such a band.
+// seam get the curves there. Applies when both closed edges are single edges once their
+// pieces are joined (the seams of the band and of the face across c1 meet c1 at one
+// vertex, as OpenCASCADE's chamfers and fillets of a circle make them); nullopt when f
+// is not such a band.
 std::optional<std::string> ring_sliver(RepairContext& c, FaceH f) {
   Body& b = c.b;
   std::vector<LoopH> loops = b.loops_of(f);
   if (loops.size() != 1 || b.is_lone(loops[0])) return std::nullopt;
   std::vector<HalfedgeH> hs = b.loop_halfedges(loops[0]);
+  // A closed edge may come in pieces: vertices on two edges only, both between f and one
+  // other face (a short-edge chain cut into the circle, or a vertex pass 10 would join;
+  // both later passes). Such a band is a ring all the same: the pieces are joined first.
+  auto joinable = [&](HalfedgeH h) {
+    const HalfedgeH n = b.next(h);
+    return b.degree(b.target(h)) == 2 && edge_of(h) != edge_of(n) && b.face(twin(h)) == b.face(twin(n)) &&
+           b.face(twin(h)).valid() && b.face(twin(h)) != f;
+  };
+  if (hs.size() > 4 && std::count_if(hs.begin(), hs.end(), [&](HalfedgeH h) { return !joinable(h); }) == 4) {
+    for (std::size_t guard = hs.size(); guard > 0; --guard) {
+      auto it = std::find_if(hs.begin(), hs.end(), joinable);
+      if (it == hs.end()) break;
+      if (auto r = euler::jekv(b, *it); !r) return "jekv refused at " + b.target(*it).str() + ": " + r.error().message;
+      hs = b.loop_halfedges(loops[0]);
+    }
+  }
   if (hs.size() != 4) return std::nullopt;
   // Rotate so that hs[1] and hs[3] are the seam's two sides.
   std::size_t k = 0;

@@ -530,6 +530,16 @@ TEST(ScanParts, AMergedFaceKeepsAsItsSeamTheRulingWhoseRunEndsCarryMoreEdges) {
   expect_multi_case_passes(2, 78, 24, "tee");
 }
 
+// A thin cone band scanned round the shaft's shoulder circle (a ring sliver) whose circle
+// on the cylinder's side a short-edge chain has cut into five pieces. Pass 6 took a band
+// only when both its closed edges were single edges; this one fell through to the general
+// collapse, which stops at its seam ("f8 meets itself along e17"), and pass 7 comes too
+// late. The pieces (vertices on two edges between the band and one face) are now joined
+// first (ring_sliver, pass_sliver_face.cpp).
+TEST(ScanParts, ARingSliverWhoseCircleAChainCutIntoPiecesIsStillARing) {
+  expect_multi_case_passes(10, 3, 24, "shaft");
+}
+
 // A multiple-face gap at a corner of a box rounded on every edge, where its flat face, two
 // fillet cylinders and the corner's sphere all touch (one normal for the four): meet_point
 // found a point within 2e-10 of every surface but 3.8e-5 off their contact curves (at a
