@@ -239,7 +239,26 @@ std::optional<std::string> ring_sliver(RepairContext& c, FaceH f) {
     return b.degree(b.target(h)) == 2 && edge_of(h) != edge_of(n) && b.face(twin(h)) == b.face(twin(n)) &&
            b.face(twin(h)).valid() && b.face(twin(h)) != f;
   };
-  if (hs.size() > 4 && std::count_if(hs.begin(), hs.end(), [&](HalfedgeH h) { return !joinable(h); }) == 4) {
+  // Joined only when the loop is [c1 pieces, s, c2 pieces, s⁻¹]: the seam s the one edge
+  // it runs along both ways, each side between them a run of joinable pieces.
+  auto pieces_of_a_ring = [&]() {
+    const std::size_t n = hs.size();
+    std::size_t s1 = n, s2 = n;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (edge_of(hs[i]) == edge_of(hs[j])) {
+          if (s1 != n) return false;  // a second edge run both ways
+          s1 = i, s2 = j;
+        }
+    if (s1 == n || s2 == s1 + 1 || (s1 == 0 && s2 == n - 1)) return false;
+    // Within each side every vertex but the side's last joins two pieces.
+    for (std::size_t i = (s1 + 1) % n; (i + 1) % n != s2; i = (i + 1) % n)
+      if (!joinable(hs[i])) return false;
+    for (std::size_t i = (s2 + 1) % n; (i + 1) % n != s1; i = (i + 1) % n)
+      if (!joinable(hs[i])) return false;
+    return true;
+  };
+  if (hs.size() > 4 && pieces_of_a_ring()) {
     for (std::size_t guard = hs.size(); guard > 0; --guard) {
       auto it = std::find_if(hs.begin(), hs.end(), joinable);
       if (it == hs.end()) break;
