@@ -37,6 +37,24 @@ std::string join_run(Body& b, HalfedgeH h, std::size_t n) {
   return "";
 }
 
+// Closes a gap of three border edges, [a, b1, b2] in cycle order, where b1 and b2 meet at
+// a vertex w that carries an edge of the face beyond them: a is split at `at` (the point
+// of a nearest w) into a1, a2; an edge from the split point to w (mef) makes a new face
+// [a2, b1, w→m] in the gap and leaves the gap [a1, m→w, b2]; that edge is collapsed onto w
+// (kev), leaving two gaps of two edges; the face across a grows over both (kef twice),
+// a1 and a2 gone: b1 and b2 lie between the two faces, meeting at w.
+std::string zip_at(Body& b, HalfedgeH a, HalfedgeH b2, const geo::Vec3& at) {
+  auto s = euler::semv(b, a, at);
+  if (!s) return refused("semv", s.error());
+  const HalfedgeH a1 = a, a2 = s->next;
+  auto m = euler::mef(b, Corner::before(a2), Corner::before(b2));
+  if (!m) return refused("mef", m.error());
+  if (auto r = euler::kev(b, m->b); !r) return refused("kev", r.error());
+  if (auto r = euler::kef(b, twin(a1)); !r) return refused("kef", r.error());
+  if (auto r = euler::kef(b, twin(a2)); !r) return refused("kef", r.error());
+  return "";
+}
+
 // Whether moving junction j to p extends the edges at j rather than folding them back:
 // every edge at j that is not on the gap keeps its direction from its far end.
 bool extends(const Body& b, VertexH j, const geo::Vec3& p) {
@@ -252,11 +270,28 @@ std::string collapse_gap(RepairCall& c, const Gap& g, const std::vector<std::siz
   const std::size_t k = g.runs.size();
   std::set<FaceH> faces;
   for (const GapRun& r : g.runs) faces.insert(r.face);
-  // Kept runs become one edge each.
+  // Kept runs become one edge each. One of two kept runs may pass a vertex that carries
+  // another edge: a seam of its face ending on the gap (a cylinder fitted twice, merged by
+  // pass 8 with the ruling through the gap kept as its seam; scan parts, shaft). That run
+  // becomes two edges, joined on either side of the vertex, and the other run is split to
+  // match it (zip_at below).
   std::vector<HalfedgeH> kept;
+  VertexH inner;                 // that vertex
+  std::size_t inner_run = 0;     // which of `kept` passes it
+  HalfedgeH after_inner;         // the run's edge from it on
   for (std::size_t i : keep) {
-    if (std::string why = join_run(b, g.runs[i].edges.front(), g.runs[i].edges.size()); !why.empty()) return why;
-    kept.push_back(g.runs[i].edges.front());
+    const std::vector<HalfedgeH>& es = g.runs[i].edges;
+    std::size_t split = 0;  // edges of the run before the vertex; 0: no such vertex
+    for (std::size_t j = 0; j + 1 < es.size(); ++j)
+      if (b.degree(b.target(es[j])) != 2 && keep.size() == 2 && !inner.valid() && split == 0) split = j + 1;
+    if (split == 0) {
+      if (std::string why = join_run(b, es.front(), es.size()); !why.empty()) return why;
+    } else {
+      inner = b.target(es[split - 1]), inner_run = kept.size(), after_inner = es[split];
+      if (std::string why = join_run(b, es.front(), split); !why.empty()) return why;
+      if (std::string why = join_run(b, es[split], es.size() - split); !why.empty()) return why;
+    }
+    kept.push_back(es.front());
   }
   // Every other run collapses: kev of its edges (the last edge of the gap stays when no
   // run is kept, and is removed by kef below).
@@ -277,6 +312,17 @@ std::string collapse_gap(RepairCall& c, const Gap& g, const std::vector<std::siz
     auto r = euler::kef(b, twin(last));
     if (!r) return refused("kef", r.error());
     place.push_back({v, points[0]});
+  } else if (inner.valid()) {
+    if (b.loop_halfedges(g.border).size() != 3) return "the gap did not collapse to three edges";
+    // Group after the first kept run ends at its end; the other group at its origin.
+    place.push_back({inner_run == 0 ? b.target(after_inner) : b.target(kept[0]), points[0]});
+    place.push_back({b.origin(kept[0]), points[1]});
+    const HalfedgeH across = kept[1 - inner_run];
+    const geo::CurvePoint m = geo::closest_point(b.curve(edge_of(across)), b.point(inner));
+    place.push_back({inner, 0.5 * (m.point + b.point(inner))});
+    if (std::string why = zip_at(b, across, after_inner, m.point); !why.empty()) return why;
+    c.touched.edges.insert(edge_of(kept[inner_run]));
+    c.touched.edges.insert(edge_of(after_inner));
   } else {
     if (b.loop_halfedges(g.border).size() != 2) return "the gap did not collapse to two edges";
     // Group after the first kept run ends at its target; the other group at its origin.

@@ -542,6 +542,17 @@ TEST(ScanParts, ARingSliverWhoseCircleAChainCutIntoPiecesIsStillARing) {
   expect_gated_case_passes(10, 3, 24, "shaft", /*all_multi=*/true);
 }
 
+// The shaft's cylinder fitted twice, with a multiple-face gap where one of the two rulings
+// between its pieces meets the circle under the cone, and an edge gap elsewhere. Pass 3
+// cannot close the gap (its faces include both pieces, whose surfaces do not intersect);
+// pass 8 merges them and keeps that ruling as the seam, which leaves an edge gap whose
+// border on the cylinder's side passes the seam's end. Closing it needed each side to be
+// one edge ("v12 inside the gap's border lies on 3 edges"); the other side is now split
+// to match and the two zipped at that vertex (zip_at, repair/gap_closing.cpp).
+TEST(ScanParts, AnEdgeGapWhoseBorderPassesASeamsEndClosesThroughIt) {
+  expect_gated_case_passes(1, 3, 24, "shaft", /*all_multi=*/true);
+}
+
 // A multiple-face gap at a corner of a box rounded on every edge, where its flat face, two
 // fillet cylinders and the corner's sphere all touch (one normal for the four): meet_point
 // found a point within 2e-10 of every surface but 3.8e-5 off their contact curves (at a
