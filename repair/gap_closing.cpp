@@ -282,8 +282,9 @@ std::string collapse_gap(RepairCall& c, const Gap& g, const std::vector<std::siz
   for (std::size_t i : keep) {
     const std::vector<HalfedgeH>& es = g.runs[i].edges;
     std::size_t split = 0;  // edges of the run before the vertex; 0: no such vertex
-    for (std::size_t j = 0; j + 1 < es.size(); ++j)
-      if (b.degree(b.target(es[j])) != 2 && keep.size() == 2 && !inner.valid() && split == 0) split = j + 1;
+    if (keep.size() == 2 && !inner.valid())
+      for (std::size_t j = 0; j + 1 < es.size() && split == 0; ++j)
+        if (b.degree(b.target(es[j])) != 2) split = j + 1;
     if (split == 0) {
       if (std::string why = join_run(b, es.front(), es.size()); !why.empty()) return why;
     } else {
