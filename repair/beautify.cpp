@@ -111,9 +111,13 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     // The faces the repair can act on, as they are before it: the solve's data terms.
     original = detail::snapshot_near(b, p, tol);
     RepairContext call{b, p, tol, touched};
+    call.coincide = options.lies_on > 0 ? options.lies_on : tol.precision;
     why = pass.repair(call);
     note = call.note;
     if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
+    // Checked before the solve, which keeps each vertex near where the pass put it: the
+    // gate would refuse the edge as degenerate after solving for nothing.
+    if (why.empty()) why = detail::coinciding_ends(b, touched.vertices, call.coincide);
     // Every pass ends here: the region's surfaces and vertices solved together so that
     // the geometry agrees with the new topology to the modelling precision.
     // When it cannot (near-coincident faces waiting for pass 8 make a vertex's position
@@ -139,6 +143,9 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
       why = solve_why.empty() ? "the new geometry is not consistent within tolerance (deviation " + detail::fmt(dev) + ")"
                               : solve_why;
   }
+  if (why.empty() && !solve_why.empty() && options.unsolved_earlier.count({p.type, p.elements}))
+    why = "its geometry could not be solved to the modelling precision, now as in an earlier round after which no "
+          "later repair solved it: " + solve_why;
   if (why.empty() && !solve_why.empty()) {
     note += (note.empty() ? "" : "; ") + std::string("consistent to the tolerance only: ") + solve_why;
     entry.unsolved = true;
@@ -422,8 +429,10 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
     // Refused in this round only: in a later round, after the other repairs, the same
     // problem may solve (as it would in a second beautify: idempotence).
     BeautifyOptions options = options_in;
-    for (const auto& [key, why] : vetoes)
+    for (const auto& [key, why] : vetoes) {
       if (std::get<0>(key) == round) options.unsolved[{std::get<1>(key), std::get<2>(key)}] = why;
+      if (std::get<0>(key) < round) options.unsolved_earlier.insert({std::get<1>(key), std::get<2>(key)});
+    }
     for (ProblemType t : kAllProblemTypes) {
       auto start = clock::now();
       q.refresh(b, tol, since_refresh);

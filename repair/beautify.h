@@ -22,6 +22,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,11 @@ struct BeautifyOptions {
   // that did not help) would write a model that is not valid, so the run is undone and
   // done again without those repairs (beautify.cpp, "Unsolved repairs").
   std::map<std::pair<ProblemType, std::vector<Element>>, std::string> unsolved;
+  // Problems refused that way in an earlier round of the run (beautify() fills it too):
+  // tried again, they are repaired only when their geometry now solves. Kept unsolved
+  // again, they would only end unsettled once more (no later repair settled them
+  // before), and each such end costs a whole run again.
+  std::set<std::pair<ProblemType, std::vector<Element>>> unsolved_earlier;
 };
 
 // The whole pipeline, passes 1..11.

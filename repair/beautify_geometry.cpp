@@ -459,9 +459,22 @@ std::string refit_joined_edge(Body& b, EdgeH keep, bool pieces_of_one_curve, con
   return "";
 }
 
+std::string coinciding_ends(const Body& b, const std::set<VertexH>& vertices, double coincide) {
+  std::set<EdgeH> edges;
+  for (VertexH v : vertices)
+    if (b.alive(v))
+      for (HalfedgeH h : b.outgoing(v)) edges.insert(edge_of(h));
+  for (EdgeH e : edges) {
+    const HalfedgeH h = halfedge_of(e, 0);
+    if (b.origin(h) != b.target(h) && (b.point(b.origin(h)) - b.point(b.target(h))).norm() <= coincide)
+      return "the result would not be valid: degenerate_edge: " + e.str() + " joins two distinct vertices at the same point";
+  }
+  return "";
+}
+
 std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Vec3>>& guesses,
                            const geo::Tolerances& tol, double max_move, Touched& touched,
-                           const std::set<FaceH>& ignore) {
+                           const std::set<FaceH>& ignore, double coincide) {
   std::vector<std::pair<VertexH, geo::Vec3>> points;
   for (auto [v, guess] : guesses) {
     std::vector<geo::Surface> surfaces;
@@ -507,6 +520,9 @@ std::string place_vertices(Body& b, const std::vector<std::pair<VertexH, geo::Ve
   }
   std::vector<VertexH> placed;
   for (auto [v, p] : points) placed.push_back(v);
+  if (coincide > 0)
+    if (std::string why = coinciding_ends(b, std::set<VertexH>(placed.begin(), placed.end()), coincide); !why.empty())
+      return why;
   align_seams(b, placed, tol, touched);
   std::set<EdgeH> edges;
   for (auto [v, p] : points)

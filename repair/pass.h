@@ -30,6 +30,9 @@ struct RepairContext {
   const geo::Tolerances& tol;
   Touched& touched;
   std::string note = {};  // how the repair was made, for the report (e.g. a new face's surface kind)
+  // The validity gate's limit for two points being one (its lies-on limit: the modelling
+  // precision, or the input's own accuracy when that is coarser); see coinciding_ends.
+  double coincide = 0.0;
 };
 
 using RepairFn = std::string (*)(RepairContext&);

@@ -105,7 +105,7 @@ std::string place(RepairContext& c, const std::vector<VertexH>& vs) {
   }
   for (auto [v, p] : guesses)
     for (FaceH g : faces_around(b, v)) c.touched.faces.insert(g);
-  return place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched);
+  return place_vertices(b, guesses, c.tol, 2 * c.tol.length, c.touched, {}, c.coincide);
 }
 
 std::string unbranched(RepairContext& c, FaceH f, const std::vector<VertexH>& loop) {

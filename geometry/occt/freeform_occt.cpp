@@ -43,6 +43,7 @@
 #include <gp_Ax3.hxx>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -96,16 +97,40 @@ Handle(Geom_BSplineSurface) make_surface(const BSplineSurface& b) {
   return new Geom_BSplineSurface(poles, w, uk, vk, um, vm, b.u_degree, b.v_degree, b.u_periodic, b.v_periodic);
 }
 
+// An adaptor that can say whether its B-spline cache (one knot span's polynomial) holds a
+// parameter: GeomAdaptor_Surface keeps the cache protected.
+class SpanAdaptor : public GeomAdaptor_Surface {
+ public:
+  bool holds(double u, double v) const { return !mySurfaceCache.IsNull() && mySurfaceCache->IsCacheValid(u, v); }
+};
+
 // What is cached on a free-form surface's data: the OpenCASCADE surface and the
 // projection helper (not thread-safe: guarded).
 struct SurfaceCache {
   Handle(Geom_Surface) surface;
-  // Evaluation goes through the adaptor: for B-splines (and the B-spline curves under
-  // revolution, extrusion and offset surfaces) it keeps the current knot span's
-  // polynomial (BSplSLib_Cache), where Geom_BSplineSurface::D1 runs de Boor's algorithm
-  // (BSplCLib::Bohm) on every call: measured, most of a B-spline face's measure. The
-  // adaptor's cache is not thread-safe: evaluations hold `m`.
-  GeomAdaptor_Surface adaptor;
+  // Evaluation goes through an adaptor: for B-splines (and the B-spline curves under
+  // revolution, extrusion and offset surfaces) it keeps one knot span's polynomial
+  // (BSplSLib_Cache), where Geom_BSplineSurface::D1 runs de Boor's algorithm
+  // (BSplCLib::Bohm) on every call: measured, most of a B-spline face's measure. A solve
+  // evaluates its vertices on one surface in turn, each in its own span, and a single
+  // cache was rebuilt at nearly every call (BSplSLib::BuildCache, a fifth of
+  // linkrods.step's beautify at --tol 0.0056); a B-spline surface keeps kSpans adaptors,
+  // each holding the span it last built, and the one built longest ago is rebuilt. The
+  // answers are the same: a span's polynomial does not depend on which adaptor holds it.
+  // The caches are not thread-safe: evaluations hold `m`.
+  static constexpr std::size_t kSpans = 8;
+  std::array<SpanAdaptor, kSpans> adaptors;
+  std::size_t oldest = 0;
+  bool spans = false;  // a B-spline or Bezier surface: its adaptors cache spans
+  // The adaptor to evaluate at (u, v) with.
+  GeomAdaptor_Surface& at(double u, double v) {
+    if (!spans) return adaptors[0];
+    for (SpanAdaptor& a : adaptors)
+      if (a.holds(u, v)) return a;
+    SpanAdaptor& a = adaptors[oldest];
+    oldest = (oldest + 1) % kSpans;
+    return a;
+  }
   Handle(ShapeAnalysis_Surface) analysis;
   // Starting points for a projection that is not near the last one: the surface at the
   // centres of a kSeedGrid × kSeedGrid grid over its bounds (built on first need; empty
@@ -158,7 +183,9 @@ SurfaceCache& surface_cache(const Surface& s) {
     c->analysis = new ShapeAnalysis_Surface(c->surface);
     // Boundary samples of every face that reaches a side of its surface are projected
     // onto the bound exactly: evaluated from the cache (load_for_evaluation).
-    c->bounded = load_for_evaluation(c->adaptor, c->surface);
+    for (SpanAdaptor& a : c->adaptors) c->bounded = load_for_evaluation(a, c->surface);
+    const GeomAbs_SurfaceType type = c->adaptors[0].GetType();
+    c->spans = type == GeomAbs_BSplineSurface || type == GeomAbs_BezierSurface;
     if (c->bounded) {
       Bnd_Box box;
       BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
@@ -190,7 +217,7 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
   gp_Vec a, b;
   {
     std::lock_guard<std::mutex> lock(c.m);
-    c.adaptor.D1(uv.x(), uv.y(), p, a, b);
+    c.at(uv.x(), uv.y()).D1(uv.x(), uv.y(), p, a, b);
   }
   *du = vec(a);
   *dv = vec(b);
@@ -212,7 +239,7 @@ Vec3 surface_d1(const Surface& s, const Vec2& uv, Vec3* du, Vec3* dv) {
 double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2d* uv, double* tangential) {
   gp_Pnt q;
   gp_Vec su, sv;
-  c.adaptor.D1(u, v, q, su, sv);
+  c.at(u, v).D1(u, v, q, su, sv);
   double dist = q.Distance(target);
   auto done = [&]() {
     const gp_Vec r(q, target);
@@ -236,7 +263,7 @@ double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2
       // Hessian, while it is positive definite.
       gp_Pnt ignored;
       gp_Vec su2, sv2, suu, svv, suv;
-      c.adaptor.D2(u, v, ignored, su2, sv2, suu, svv, suv);
+      c.at(u, v).D2(u, v, ignored, su2, sv2, suu, svv, suv);
       const double ha = a - r.Dot(suu), hb = b - r.Dot(suv), hd = d - r.Dot(svv), hdet = ha * hd - hb * hb;
       if (ha > 0 && hd > 0 && hdet > 1e-12 * a * d) a = ha, b = hb, d = hd, det = hdet;
     }
@@ -256,7 +283,7 @@ double newton(SurfaceCache& c, const gp_Pnt& target, double u, double v, gp_Pnt2
     for (double t = 1; t > 1.0 / 4096; t *= 0.5) {
       un = std::clamp(u + t * du, c.u0, c.u1);
       vn = std::clamp(v + t * dv, c.v0, c.v1);
-      c.adaptor.D1(un, vn, qn, sun, svn);
+      c.at(un, vn).D1(un, vn, qn, sun, svn);
       if (qn.Distance(target) <= dist) {
         moved = true;
         break;
@@ -279,7 +306,7 @@ void build_seeds(SurfaceCache& c) {
     for (int j = 0; j < n; ++j) {
       const double u = c.u0 + (c.u1 - c.u0) * (i + 0.5) / n, v = c.v0 + (c.v1 - c.v0) * (j + 0.5) / n;
       c.seed_uv.emplace_back(u, v);
-      c.seed_xyz.push_back(c.adaptor.Value(u, v));
+      c.seed_xyz.push_back(c.at(u, v).Value(u, v));
     }
 }
 
