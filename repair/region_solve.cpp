@@ -206,7 +206,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
 
 }  // namespace
 
-OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Tolerances& tol) {
+std::set<FaceH> faces_near(const Body& b, const Problem& p) {
   std::set<VertexH> vs;
   for (const Element& e : p.elements) add_vertices(b, e, vs);
   std::set<FaceH> ring1, ring2;
@@ -219,8 +219,12 @@ OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Toleranc
     if (few_corners(b, f, kMaxSolvedFaceCorners))
       for (VertexH v : face_vertices(b, f))
         for (FaceH g : faces_around(b, v)) ring2.insert(g);
+  return ring2;
+}
+
+OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Tolerances& tol) {
   OriginalFaces out;
-  for (FaceH f : ring2) {
+  for (FaceH f : faces_near(b, p)) {
     if (std::holds_alternative<std::monostate>(b.surface(f)) || !few_corners(b, f, kMaxSolvedFaceCorners)) continue;
     try {
       OriginalFace o{b.surface(f), samples_of(b, f, tol), {}};

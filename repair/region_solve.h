@@ -35,6 +35,8 @@ using OriginalFaces = std::map<FaceH, OriginalFace>;
 // The faces within two rings of the problem's elements (faces around their vertices,
 // and the faces around those faces' vertices): where a repair of it can act.
 OriginalFaces snapshot_near(const Body& b, const Problem& p, const geo::Tolerances& tol);
+// Those faces (the second ring only through faces of few corners), without their data.
+std::set<FaceH> faces_near(const Body& b, const Problem& p);
 
 struct SurfaceMove {
   FaceH face;
