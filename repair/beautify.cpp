@@ -111,13 +111,13 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     // The faces the repair can act on, as they are before it: the solve's data terms.
     original = detail::snapshot_near(b, p, tol);
     RepairContext call{b, p, tol, touched};
-    call.coincide = options.lies_on > 0 ? options.lies_on : tol.precision;
+    if (options.shortcuts) call.coincide = options.lies_on > 0 ? options.lies_on : tol.precision;
     why = pass.repair(call);
     note = call.note;
     if (why.empty() && options.after_repair) options.after_repair(b, p.type, touched);
     // Checked before the solve, which keeps each vertex near where the pass put it: the
     // gate would refuse the edge as degenerate after solving for nothing.
-    if (why.empty()) why = detail::coinciding_ends(b, touched.vertices, call.coincide);
+    if (why.empty() && call.coincide > 0) why = detail::coinciding_ends(b, touched.vertices, call.coincide);
     // Every pass ends here: the region's surfaces and vertices solved together so that
     // the geometry agrees with the new topology to the modelling precision.
     // When it cannot (near-coincident faces waiting for pass 8 make a vertex's position
@@ -329,6 +329,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     const RepairEntry* before = replay ? replay->refusal_for(p) : nullptr;
     if (!before && refusals && !options.unsolved.count({p.type, p.elements})) before = refusals->standing(b, p);
     RepairEntry entry = before ? *before : attempt(b, p, tol, options, *pass, touched, &original, memo);
+    report.refusals_taken_over += before != nullptr;
     if (replay) replay->record(entry);
     if (refusals && !entry.repaired() && !options.unsolved.count({p.type, p.elements})) refusals->refused(entry);
     if (refusals && entry.repaired()) refusals->changed(b, touched);
@@ -521,7 +522,8 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
       const std::size_t first_entry = r.problems.size();
       const std::size_t made = unsettled.size();
       since_refresh =
-          run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled, &q.memo, replay, &refusals);
+          run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled, &q.memo, replay,
+                    options.veto || !options.shortcuts ? nullptr : &refusals);
       for (std::size_t i = made; i < unsettled.size(); ++i) unsettled[i].round = round;
       for (std::size_t i = first_entry; i < r.problems.size(); ++i) repaired += r.problems[i].repaired();
       q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
@@ -621,11 +623,15 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   RoundVetoes vetoes;
   // A test's veto hook may count its calls: every attempt is made again then.
   Replay replay;
+  int runs = 0, taken_over = 0;
   for (;;) {
     Transaction whole(b);
     RoundVetoes unsolved;
-    BeautifyReport r = beautify_once(b, tol, options, vetoes, unsolved, options.veto ? nullptr : &replay);
+    BeautifyReport r =
+        beautify_once(b, tol, options, vetoes, unsolved, options.veto || !options.shortcuts ? nullptr : &replay);
     replay.next_run();
+    r.runs = ++runs;
+    r.refusals_taken_over = taken_over += r.refusals_taken_over;
     std::size_t added = 0;
     for (auto& [key, why] : unsolved) added += vetoes.emplace(key, why).second;
     if (unsolved.empty() || added == 0) {

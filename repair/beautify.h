@@ -78,6 +78,11 @@ struct BeautifyReport {
   double max_deviation = 0.0;         // check_geometry over the result
   std::vector<std::string> max_elements;
   std::array<double, 11> seconds{};   // per pass, indexed by problem_order(type) - 1
+  // How many times the pipeline ran (again after a run ended with a repair unsolved:
+  // beautify.cpp, "Unsolved repairs"), and how many refusals all runs took over from an
+  // earlier attempt instead of attempting again (BeautifyOptions::shortcuts).
+  int runs = 0;
+  int refusals_taken_over = 0;
 
   int repaired() const;
   int not_repaired() const;  // entries refused or without a pass
@@ -113,6 +118,11 @@ struct BeautifyOptions {
   // again, they would only end unsettled once more (no later repair settled them
   // before), and each such end costs a whole run again.
   std::set<std::pair<ProblemType, std::vector<Element>>> unsolved_earlier;
+  // Shortcuts that must not change the outcome: a refusal taken over where the attempt
+  // would meet it again (beautify.cpp, Replay and Refusals), and an edge whose two
+  // vertices a repair put at one point refused before its geometry is computed
+  // (coinciding_ends). Off only to test that they change nothing.
+  bool shortcuts = true;
 };
 
 // The whole pipeline, passes 1..11.
