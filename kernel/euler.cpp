@@ -113,7 +113,12 @@ ShellH EulerImpl::new_shell(Body& b, std::uint32_t reuse) {
 
 void EulerImpl::kill(Body& b, VertexH v) { b.v_alive_[v.idx()] = 0; }
 void EulerImpl::kill(Body& b, EdgeH e) { b.e_alive_[e.idx()] = 0; }
-void EulerImpl::kill(Body& b, LoopH l) { b.l_alive_[l.idx()] = 0; }
+void EulerImpl::kill(Body& b, LoopH l) {
+  // Where it started goes to the journal (set_first): undone, the kill revives the loop
+  // through a make step that starts it at its new half-edge.
+  set_first(b, l, HalfedgeH{});
+  b.l_alive_[l.idx()] = 0;
+}
 void EulerImpl::kill(Body& b, FaceH f) {
   sh(b, fc(b, f).shell).faces--;
   b.f_alive_[f.idx()] = 0;

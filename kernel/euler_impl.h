@@ -35,6 +35,18 @@ class EulerImpl {
 
   static HalfedgeRec& he(Body& b, HalfedgeH h) { return b.halfedges_[h.idx()]; }
   static LoopRec& lp(Body& b, LoopH l) { return b.loops_[l.idx()]; }
+  // A loop's first half-edge is set only here: while journaling, the one it had is kept
+  // (Journal::firsts_, even when it stays: the undo's make step may move it), so a
+  // rollback restores where every loop starts as well as its half-edges. Undo re-makes a killed edge through a make step that may start the
+  // loop elsewhere (mef starts the old loop at its new half-edge), and a repair refused
+  // after such a step would otherwise leave its faces' loops starting elsewhere, which
+  // later repairs that walk a loop from its start (a small face collapsed from its first
+  // edge) see.
+  static void set_first(Body& b, LoopH l, HalfedgeH h) {
+    LoopRec& r = lp(b, l);
+    if (b.journaling_) b.journal_.firsts_.emplace_back(l, r.first);
+    r.first = h;
+  }
   static FaceRec& fc(Body& b, FaceH f) { return b.faces_[f.idx()]; }
   static ShellRec& sh(Body& b, ShellH s) { return b.shells_[s.idx()]; }
   static VertexRec& vx(Body& b, VertexH v) { return b.vertices_[v.idx()]; }

@@ -38,6 +38,7 @@ void Journal::clear() {
   surfaces_.clear();
   senses_.clear();
   lists_.clear();
+  firsts_.clear();
 }
 
 }  // namespace kintsugi

@@ -52,6 +52,9 @@ class Journal {
   std::vector<geo::Surface> surfaces_;
   std::vector<std::uint8_t> senses_;
   std::vector<std::vector<std::uint32_t>> lists_;
+  // Each change of a loop's first half-edge while journaling: the loop and the half-edge
+  // it started at before (EulerImpl::set_first); a rollback restores them in reverse.
+  std::vector<std::pair<LoopH, HalfedgeH>> firsts_;
 };
 
 }  // namespace kintsugi

@@ -33,15 +33,15 @@ KemrResult EulerImpl::raw_kemr(Body& b, HalfedgeH x, const Reuse& r, TouchedElem
   if (nx != y) {
     link(b, py, nx);
     relabel(b, nx, nx, ring);
-    lp(b, ring).first = nx;
+    set_first(b, ring, nx);
   } else {
     lp(b, ring).lone = w;
   }
   if (ny != x) {
     link(b, px, ny);
-    lp(b, l).first = ny;
+    set_first(b, l, ny);
   } else {
-    lp(b, l).first = HalfedgeH{};
+    set_first(b, l, HalfedgeH{});
     lp(b, l).lone = v;
   }
   // Representatives: v and w keep any surviving half-edge leaving them.
@@ -121,7 +121,7 @@ MekrResult EulerImpl::raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, To
   link(b, before_b, bb);
   link(b, bb, after_b);
   if (c1.lone.valid()) lp(b, l1).lone = VertexH{};
-  lp(b, l1).first = a;
+  set_first(b, l1, a);
   if (!vx(b, v1).out.valid()) vx(b, v1).out = a;
   if (!vx(b, v2).out.valid()) vx(b, v2).out = bb;
   remove_ring(b, f, l2);

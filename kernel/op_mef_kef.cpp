@@ -32,7 +32,7 @@ MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touc
     VertexH v = lp(b, l).lone;
     he(b, a) = {v, a, a, l};
     he(b, bb) = {v, bb, bb, nl};
-    lp(b, l).first = a;
+    set_first(b, l, a);
     lp(b, l).lone = VertexH{};
     vx(b, v).out = a;
     t.vertices.push_back(v);
@@ -59,8 +59,8 @@ MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touc
     t.vertices.push_back(he(b, a).origin);
     t.vertices.push_back(he(b, bb).origin);
   }
-  lp(b, l).first = a;
-  lp(b, nl).first = bb;
+  set_first(b, l, a);
+  set_first(b, nl, bb);
   t.loops.push_back(l);
   t.loops.push_back(nl);
   t.faces.push_back(nf);
@@ -120,18 +120,18 @@ void EulerImpl::raw_kef(Body& b, HalfedgeH h, TouchedElements& t) {
   HalfedgeH ph = he(b, h).prev, nh = he(b, h).next, pt = he(b, tw).prev, nt = he(b, tw).next;
   bool h_alone = nh == h, t_alone = nt == tw;
   if (h_alone && t_alone) {  // a self-loop between two one-edge loops: v alone remains
-    lp(b, lh).first = HalfedgeH{};
+    set_first(b, lh, HalfedgeH{});
     lp(b, lh).lone = v;
     vx(b, v).out = HalfedgeH{};
   } else if (t_alone) {  // the self-loop tw bounded its face alone
     link(b, ph, nh);
-    lp(b, lh).first = nh;
+    set_first(b, lh, nh);
     if (vx(b, v).out == h || vx(b, v).out == tw) vx(b, v).out = nh;
   } else {
     relabel(b, nt, tw, lh);
     link(b, ph, nt);
     link(b, pt, nh);
-    lp(b, lh).first = nh;
+    set_first(b, lh, nh);
     if (vx(b, v).out == h) vx(b, v).out = nt;
     if (vx(b, w).out == tw) vx(b, w).out = nh;
   }

@@ -57,7 +57,7 @@ MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, Loo
     v = lp(b, lone).lone;
     he(b, x) = {v, y, y, lone};
     he(b, y) = {w, x, x, lone};
-    lp(b, lone).first = x;
+    set_first(b, lone, x);
     lp(b, lone).lone = VertexH{};
     vx(b, v).out = x;
     t.loops.push_back(lone);
@@ -147,7 +147,7 @@ void EulerImpl::raw_kev(Body& b, HalfedgeH x, TouchedElements& t) {
   LoopH lx = he(b, x).loop, ly = he(b, y).loop;
   HalfedgeH px = he(b, x).prev, nx = he(b, x).next, py = he(b, y).prev, ny = he(b, y).next;
   if (nx == y && ny == x) {  // the loop is just this edge: it becomes v alone
-    lp(b, lx).first = HalfedgeH{};
+    set_first(b, lx, HalfedgeH{});
     lp(b, lx).lone = v;
     vx(b, v).out = HalfedgeH{};
   } else {
@@ -159,8 +159,8 @@ void EulerImpl::raw_kev(Body& b, HalfedgeH x, TouchedElements& t) {
       link(b, px, nx);
       link(b, py, ny);
     }
-    if (lp(b, lx).first == x) lp(b, lx).first = (nx == y) ? ny : nx;
-    if (lp(b, ly).first == y) lp(b, ly).first = ny;
+    if (lp(b, lx).first == x) set_first(b, lx, (nx == y) ? ny : nx);
+    if (lp(b, ly).first == y) set_first(b, ly, ny);
     if (vx(b, v).out == x) vx(b, v).out = ny;
   }
   kill(b, w);

@@ -92,8 +92,8 @@ void EulerImpl::raw_jekv(Body& b, HalfedgeH h, TouchedElements& t) {
     link(b, p_nt, tw);
   }
   he(b, tw).origin = w;
-  if (lp(b, lh).first == nh) lp(b, lh).first = h;
-  if (lp(b, lt).first == nt) lp(b, lt).first = tw;
+  if (lp(b, lh).first == nh) set_first(b, lh, h);
+  if (lp(b, lt).first == nt) set_first(b, lt, tw);
   if (vx(b, w).out == nt) vx(b, w).out = tw;
   kill(b, m);
   kill(b, edge_of(nh));

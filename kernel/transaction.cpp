@@ -10,6 +10,7 @@ Transaction::Transaction(Body& b)
       entries_(b.journal_.entries_.size()),
       points_(b.journal_.points_.size()),
       lists_(b.journal_.lists_.size()),
+      firsts_(b.journal_.firsts_.size()),
       vertices_(b.vertices_.size()),
       edges_(b.e_alive_.size()),
       loops_(b.loops_.size()),
@@ -38,11 +39,20 @@ void Transaction::rollback() {
   if (!open_) return;
   Body& b = *b_;
   Journal& j = b.journal_;
+  // The undo steps are not recorded (they may start a loop elsewhere, or revive a killed
+  // one starting at its new half-edge); then each loop is put back where it started,
+  // from the starts the transaction's operators replaced, in reverse.
+  b.journaling_ = false;
   while (j.entries_.size() > entries_) {
     JournalEntry e = j.entries_.back();
     EulerImpl::undo(b, e);
     j.entries_.pop_back();
   }
+  for (std::size_t i = j.firsts_.size(); i-- > firsts_;) {
+    const auto& [l, h] = j.firsts_[i];
+    if (l.idx() < b.loops_.size()) b.loops_[l.idx()].first = h;
+  }
+  j.firsts_.resize(firsts_);
   j.points_.resize(points_);
   j.curves_.resize(points_);
   j.surfaces_.resize(points_);

