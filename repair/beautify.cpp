@@ -277,7 +277,6 @@ struct Refusals {
     if (it == by_problem.end() || !Replay::same_problem(it->second.entry.problem, p)) return nullptr;
     if (it->second.changes == changes.size()) return &it->second.entry;
     const std::set<FaceH> near = detail::faces_near(b, p);
-    if (std::getenv("KDBG")) { fprintf(stderr, "KDBG near:"); for (FaceH f : near) fprintf(stderr, " %s", f.str().c_str()); fprintf(stderr, "\nKDBG changes:"); for (std::size_t i = it->second.changes; i < changes.size(); ++i) { for (FaceH f : changes[i]) fprintf(stderr, " %s", f.str().c_str()); fprintf(stderr, " |"); } fprintf(stderr, "\n"); }
     for (std::size_t i = it->second.changes; i < changes.size(); ++i)
       for (FaceH f : changes[i])
         if (near.count(f)) return nullptr;
@@ -331,7 +330,6 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     if (!before && refusals && !options.unsolved.count({p.type, p.elements})) before = refusals->standing(b, p);
     RepairEntry entry = before ? *before : attempt(b, p, tol, options, *pass, touched, &original, memo);
     report.refusals_taken_over += before != nullptr;
-    if (std::getenv("KDBG")) { fprintf(stderr, "KDBG att %s", problem_name(p.type)); for (auto n : element_names(p)) fprintf(stderr, " %s", n.c_str()); fprintf(stderr, " m=%.17g -> %d %s %.90s\n", p.measure, (int)entry.outcome, before ? (replay && before == replay->refusal_for(p) ? "REPLAY" : "CARRIED") : "", entry.reason.c_str()); }
     if (replay) replay->record(entry);
     if (refusals && !entry.repaired() && !options.unsolved.count({p.type, p.elements})) refusals->refused(entry);
     if (refusals && entry.repaired()) refusals->changed(b, touched);

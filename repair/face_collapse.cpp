@@ -167,7 +167,6 @@ std::string collapse_onto_tree(Body& b, FaceH f, const std::vector<std::pair<Ver
 
 std::string collapse_to_vertex(Body& b, FaceH f, const geo::Tolerances& tol, Touched& touched) {
   auto hs = b.loop_halfedges(b.outer_loop(f));
-  if (std::getenv("KDBG")) { fprintf(stderr, "KDBG collapse %s:", f.str().c_str()); for (HalfedgeH h : hs) fprintf(stderr, " %s(%s deg%zu)", edge_of(h).str().c_str(), b.origin(h).str().c_str(), (size_t)b.degree(b.origin(h))); fprintf(stderr, "\n"); }
   geo::Vec3 centroid = geo::Vec3::Zero();
   std::map<FaceH, int> shared;
   for (HalfedgeH h : hs) {
