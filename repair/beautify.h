@@ -123,6 +123,10 @@ struct BeautifyOptions {
   // vertices a repair put at one point refused before its geometry is computed
   // (coinciding_ends). Off only to test that they change nothing.
   bool shortcuts = true;
+  // Whether a repair may be kept provisionally (its geometry solved to the tolerance only,
+  // or its faces' loops touching) for later repairs to settle; beautify() turns it off
+  // for its fourth and later runs ("Unsolved repairs" in beautify.cpp).
+  bool provisional = true;
 };
 
 // The whole pipeline, passes 1..11.
