@@ -37,11 +37,11 @@ class EulerImpl {
   static LoopRec& lp(Body& b, LoopH l) { return b.loops_[l.idx()]; }
   // A loop's first half-edge is set only here: while journaling, the one it had is kept
   // (Journal::firsts_, even when it stays: the undo's make step may move it), so a
-  // rollback restores where every loop starts as well as its half-edges. Undo re-makes a killed edge through a make step that may start the
-  // loop elsewhere (mef starts the old loop at its new half-edge), and a repair refused
-  // after such a step would otherwise leave its faces' loops starting elsewhere, which
-  // later repairs that walk a loop from its start (a small face collapsed from its first
-  // edge) see.
+  // rollback restores where every loop starts as well as its half-edges. Undo re-makes a
+  // killed edge through a make step that may start the loop elsewhere (mef starts the old
+  // loop at its new half-edge), and a repair refused after such a step would otherwise
+  // leave its faces' loops starting elsewhere, which later repairs that walk a loop from
+  // its start (a small face collapsed from its first edge) see.
   static void set_first(Body& b, LoopH l, HalfedgeH h) {
     LoopRec& r = lp(b, l);
     if (b.journaling_) b.journal_.firsts_.emplace_back(l, r.first);
