@@ -111,7 +111,10 @@ ShellH EulerImpl::new_shell(Body& b, std::uint32_t reuse) {
   return ShellH(take_slot(b.shells_, b.s_alive_, reuse, ShellRec{}));
 }
 
-void EulerImpl::kill(Body& b, VertexH v) { b.v_alive_[v.idx()] = 0; }
+void EulerImpl::kill(Body& b, VertexH v) {
+  set_out(b, v, b.vertices_[v.idx()].out);  // revived by an undo, it gets its out back
+  b.v_alive_[v.idx()] = 0;
+}
 void EulerImpl::kill(Body& b, EdgeH e) { b.e_alive_[e.idx()] = 0; }
 void EulerImpl::kill(Body& b, LoopH l) {
   // Where it started goes to the journal (set_first): undone, the kill revives the loop

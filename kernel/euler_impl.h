@@ -47,6 +47,35 @@ class EulerImpl {
     if (b.journaling_) b.journal_.firsts_.emplace_back(l, r.first);
     r.first = h;
   }
+  // A vertex's representative out-going half-edge likewise (Journal::outs_): the order
+  // Body::outgoing lists a vertex's edges in starts there, and a refused repair must not
+  // change the order later repairs meet them in.
+  static void set_out(Body& b, VertexH v, HalfedgeH h) {
+    VertexRec& r = b.vertices_[v.idx()];
+    if (b.journaling_) b.journal_.outs_.emplace_back(v, r.out);
+    r.out = h;
+  }
+  // Before an operator: the out-going half-edge of each vertex at h's ends and the start
+  // of the loop on either side, recorded as they are. The operator may leave them alone
+  // and its undo still move them (kev keeps the survivor's half-edge, the mev undoing it
+  // gives it the revived edge's), so the rollback must know them either way.
+  static void keep_around(Body& b, HalfedgeH h) {
+    if (!b.journaling_ || !h.valid()) return;
+    for (HalfedgeH x : {h, twin(h)}) {
+      const VertexH v = he(b, x).origin;
+      set_out(b, v, vx(b, v).out);
+      if (const LoopH l = he(b, x).loop; l.valid()) set_first(b, l, lp(b, l).first);
+    }
+  }
+  static void keep_around(Body& b, LoopH lone) {
+    if (!b.journaling_ || !lone.valid()) return;
+    set_first(b, lone, lp(b, lone).first);
+    if (const VertexH v = lp(b, lone).lone; v.valid()) set_out(b, v, vx(b, v).out);
+  }
+  static void keep_around(Body& b, HalfedgeH h, LoopH lone) {
+    keep_around(b, h);
+    keep_around(b, lone);
+  }
   static FaceRec& fc(Body& b, FaceH f) { return b.faces_[f.idx()]; }
   static ShellRec& sh(Body& b, ShellH s) { return b.shells_[s.idx()]; }
   static VertexRec& vx(Body& b, VertexH v) { return b.vertices_[v.idx()]; }

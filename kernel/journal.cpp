@@ -39,6 +39,7 @@ void Journal::clear() {
   senses_.clear();
   lists_.clear();
   firsts_.clear();
+  outs_.clear();
 }
 
 }  // namespace kintsugi

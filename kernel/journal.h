@@ -55,6 +55,8 @@ class Journal {
   // Each change of a loop's first half-edge while journaling: the loop and the half-edge
   // it started at before (EulerImpl::set_first); a rollback restores them in reverse.
   std::vector<std::pair<LoopH, HalfedgeH>> firsts_;
+  // Each change of a vertex's out-going half-edge while journaling (EulerImpl::set_out).
+  std::vector<std::pair<VertexH, HalfedgeH>> outs_;
 };
 
 }  // namespace kintsugi

@@ -45,8 +45,8 @@ KemrResult EulerImpl::raw_kemr(Body& b, HalfedgeH x, const Reuse& r, TouchedElem
     lp(b, l).lone = v;
   }
   // Representatives: v and w keep any surviving half-edge leaving them.
-  if (vx(b, v).out == x || vx(b, v).out == y) vx(b, v).out = (ny != x) ? ny : HalfedgeH{};
-  if (vx(b, w).out == y || vx(b, w).out == x) vx(b, w).out = (nx != y) ? nx : HalfedgeH{};
+  if (vx(b, v).out == x || vx(b, v).out == y) set_out(b, v, (ny != x) ? ny : HalfedgeH{});
+  if (vx(b, w).out == y || vx(b, w).out == x) set_out(b, w, (nx != y) ? nx : HalfedgeH{});
   kill(b, edge_of(x));
   t.loops.push_back(l);
   t.loops.push_back(ring);
@@ -67,6 +67,7 @@ Result<KemrResult> euler::kemr(Body& b, HalfedgeH x) {
   JournalEntry e{rec};
   e.saved = I::save(b, nullptr, &b.curve(edge_of(x)), nullptr, 1);
   TouchedElements t;
+  I::keep_around(b, x);
   KemrResult r = I::raw_kemr(b, x, {}, t);
   std::get<KemrRecord>(e.record).ring = r.ring;
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -122,8 +123,8 @@ MekrResult EulerImpl::raw_mekr(Body& b, Corner c1, Corner c2, const Reuse& r, To
   link(b, bb, after_b);
   if (c1.lone.valid()) lp(b, l1).lone = VertexH{};
   set_first(b, l1, a);
-  if (!vx(b, v1).out.valid()) vx(b, v1).out = a;
-  if (!vx(b, v2).out.valid()) vx(b, v2).out = bb;
+  if (!vx(b, v1).out.valid()) set_out(b, v1, a);
+  if (!vx(b, v2).out.valid()) set_out(b, v2, bb);
   remove_ring(b, f, l2);
   kill(b, l2);
   t.loops.push_back(l1);
@@ -137,6 +138,8 @@ Result<MekrResult> euler::mekr(Body& b, Corner c1, Corner c2) {
   if (auto e = can_mekr(b, c1, c2)) return *e;
   LoopH ring = pre::corner_loop(b, c2);
   TouchedElements t;
+  I::keep_around(b, c1.he, c1.lone);
+  I::keep_around(b, c2.he, c2.lone);
   MekrResult r = I::raw_mekr(b, c1, c2, {}, t);
   JournalEntry e{MekrRecord{r.edge, r.a, ring}};
   if (auto bad = I::finish(b, e, t)) return *bad;

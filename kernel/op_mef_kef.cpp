@@ -34,7 +34,7 @@ MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touc
     he(b, bb) = {v, bb, bb, nl};
     set_first(b, l, a);
     lp(b, l).lone = VertexH{};
-    vx(b, v).out = a;
+    set_out(b, v, a);
     t.vertices.push_back(v);
   } else if (c1.he == c2.he) {  // empty range: the new face is bounded by b alone
     HalfedgeH h1 = c1.he;
@@ -70,6 +70,8 @@ MefResult EulerImpl::raw_mef(Body& b, Corner c1, Corner c2, const Reuse& r, Touc
 Result<MefResult> euler::mef(Body& b, Corner c1, Corner c2) {
   if (auto e = can_mef(b, c1, c2)) return *e;
   TouchedElements t;
+  I::keep_around(b, c1.he, c1.lone);
+  I::keep_around(b, c2.he, c2.lone);
   MefResult r = I::raw_mef(b, c1, c2, {}, t);
   JournalEntry e{MefRecord{r.edge, r.a, r.face, r.loop}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -122,18 +124,18 @@ void EulerImpl::raw_kef(Body& b, HalfedgeH h, TouchedElements& t) {
   if (h_alone && t_alone) {  // a self-loop between two one-edge loops: v alone remains
     set_first(b, lh, HalfedgeH{});
     lp(b, lh).lone = v;
-    vx(b, v).out = HalfedgeH{};
+    set_out(b, v, HalfedgeH{});
   } else if (t_alone) {  // the self-loop tw bounded its face alone
     link(b, ph, nh);
     set_first(b, lh, nh);
-    if (vx(b, v).out == h || vx(b, v).out == tw) vx(b, v).out = nh;
+    if (vx(b, v).out == h || vx(b, v).out == tw) set_out(b, v, nh);
   } else {
     relabel(b, nt, tw, lh);
     link(b, ph, nt);
     link(b, pt, nh);
     set_first(b, lh, nh);
-    if (vx(b, v).out == h) vx(b, v).out = nt;
-    if (vx(b, w).out == tw) vx(b, w).out = nh;
+    if (vx(b, v).out == h) set_out(b, v, nt);
+    if (vx(b, w).out == tw) set_out(b, w, nh);
   }
   if (ft.valid()) {
     if (fh.valid()) {
@@ -180,6 +182,7 @@ Result<Done> euler::kef(Body& b, HalfedgeH h) {
     if (!rings.empty()) e.extra = I::save_list(b, std::move(rings));
   }
   TouchedElements t;
+  I::keep_around(b, h);
   I::raw_kef(b, h, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};

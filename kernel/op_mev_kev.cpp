@@ -59,7 +59,7 @@ MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, Loo
     he(b, y) = {w, x, x, lone};
     set_first(b, lone, x);
     lp(b, lone).lone = VertexH{};
-    vx(b, v).out = x;
+    set_out(b, v, x);
     t.loops.push_back(lone);
   } else if (k == MevKind::strut) {
     v = he(b, h1).origin;
@@ -90,11 +90,11 @@ MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, Loo
     link(b, x, h1);
     link(b, p2, y);
     link(b, y, h2);
-    vx(b, v).out = x;
+    set_out(b, v, x);
     t.loops.push_back(he(b, h1).loop);
     t.loops.push_back(he(b, h2).loop);
   }
-  vx(b, w).out = y;
+  set_out(b, w, y);
   t.vertices.push_back(v);
   t.vertices.push_back(w);
   return {w, e, x, y};
@@ -103,6 +103,8 @@ MevResult EulerImpl::raw_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, Loo
 namespace {
 Result<MevResult> apply_mev(Body& b, MevKind k, HalfedgeH h1, HalfedgeH h2, LoopH lone, const geo::Vec3& p) {
   TouchedElements t;
+  I::keep_around(b, h1, lone);
+  I::keep_around(b, h2);
   MevResult r = I::raw_mev(b, k, h1, h2, lone, p, {}, t);
   JournalEntry e{MevRecord{r.vertex, r.edge, r.x}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -149,7 +151,7 @@ void EulerImpl::raw_kev(Body& b, HalfedgeH x, TouchedElements& t) {
   if (nx == y && ny == x) {  // the loop is just this edge: it becomes v alone
     set_first(b, lx, HalfedgeH{});
     lp(b, lx).lone = v;
-    vx(b, v).out = HalfedgeH{};
+    set_out(b, v, HalfedgeH{});
   } else {
     // Everything leaving w except y now leaves v.
     for (HalfedgeH o = nx; o != y; o = he(b, twin(o)).next) he(b, o).origin = v;
@@ -161,7 +163,7 @@ void EulerImpl::raw_kev(Body& b, HalfedgeH x, TouchedElements& t) {
     }
     if (lp(b, lx).first == x) set_first(b, lx, (nx == y) ? ny : nx);
     if (lp(b, ly).first == y) set_first(b, ly, ny);
-    if (vx(b, v).out == x) vx(b, v).out = ny;
+    if (vx(b, v).out == x) set_out(b, v, ny);
   }
   kill(b, w);
   kill(b, edge_of(x));
@@ -189,6 +191,7 @@ Result<Done> euler::kev(Body& b, HalfedgeH x) {
   JournalEntry e{rec};
   e.saved = I::save(b, &b.point(w), &b.curve(edge_of(x)), nullptr, 1);
   TouchedElements t;
+  I::keep_around(b, x);
   I::raw_kev(b, x, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};

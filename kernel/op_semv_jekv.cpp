@@ -39,8 +39,8 @@ SemvResult EulerImpl::raw_semv(Body& b, HalfedgeH h, const geo::Vec3& p, const R
     link(b, p_t, nt);
     link(b, nt, tw);
   }
-  vx(b, m).out = nh;
-  if (vx(b, w).out == tw) vx(b, w).out = nt;
+  set_out(b, m, nh);
+  if (vx(b, w).out == tw) set_out(b, w, nt);
   t.loops.push_back(he(b, h).loop);
   if (he(b, tw).loop != he(b, h).loop) t.loops.push_back(he(b, tw).loop);
   t.vertices.push_back(he(b, h).origin);
@@ -54,6 +54,7 @@ Result<SemvResult> euler::semv(Body& b, HalfedgeH h, const geo::Vec3& p) {
   TouchedElements t;
   I::Reuse r;
   r.x_side = -1;  // choose by the direction of h
+  I::keep_around(b, h);
   SemvResult res = I::raw_semv(b, h, p, r, t);
   JournalEntry e{SemvRecord{h, res.vertex, res.edge, res.next}};
   if (auto bad = I::finish(b, e, t)) return *bad;
@@ -94,7 +95,7 @@ void EulerImpl::raw_jekv(Body& b, HalfedgeH h, TouchedElements& t) {
   he(b, tw).origin = w;
   if (lp(b, lh).first == nh) set_first(b, lh, h);
   if (lp(b, lt).first == nt) set_first(b, lt, tw);
-  if (vx(b, w).out == nt) vx(b, w).out = tw;
+  if (vx(b, w).out == nt) set_out(b, w, tw);
   kill(b, m);
   kill(b, edge_of(nh));
   t.loops.push_back(lh);
@@ -110,6 +111,8 @@ Result<Done> euler::jekv(Body& b, HalfedgeH h) {
   JournalEntry e{JekvRecord{h, m, edge_of(nh), nh}};
   e.saved = I::save(b, &b.point(m), &b.curve(edge_of(nh)), nullptr, 1);
   TouchedElements t;
+  I::keep_around(b, h);
+  I::keep_around(b, b.next(h));
   I::raw_jekv(b, h, t);
   if (auto bad = I::finish(b, e, t)) return *bad;
   return Done{};

@@ -11,6 +11,7 @@ Transaction::Transaction(Body& b)
       points_(b.journal_.points_.size()),
       lists_(b.journal_.lists_.size()),
       firsts_(b.journal_.firsts_.size()),
+      outs_(b.journal_.outs_.size()),
       vertices_(b.vertices_.size()),
       edges_(b.e_alive_.size()),
       loops_(b.loops_.size()),
@@ -40,8 +41,9 @@ void Transaction::rollback() {
   Body& b = *b_;
   Journal& j = b.journal_;
   // The undo steps are not recorded (they may start a loop elsewhere, or revive a killed
-  // one starting at its new half-edge); then each loop is put back where it started,
-  // from the starts the transaction's operators replaced, in reverse.
+  // one starting at its new half-edge); then each loop is put back where it started, and
+  // each vertex's out-going half-edge where it was, from what the transaction's operators
+  // replaced, in reverse.
   b.journaling_ = false;
   while (j.entries_.size() > entries_) {
     JournalEntry e = j.entries_.back();
@@ -53,6 +55,11 @@ void Transaction::rollback() {
     if (l.idx() < b.loops_.size()) b.loops_[l.idx()].first = h;
   }
   j.firsts_.resize(firsts_);
+  for (std::size_t i = j.outs_.size(); i-- > outs_;) {
+    const auto& [v, h] = j.outs_[i];
+    if (v.idx() < b.vertices_.size()) b.vertices_[v.idx()].out = h;
+  }
+  j.outs_.resize(outs_);
   j.points_.resize(points_);
   j.curves_.resize(points_);
   j.surfaces_.resize(points_);

@@ -30,7 +30,7 @@ class Transaction {
   Body* b_;
   bool open_ = true;
   bool was_journaling_;
-  std::size_t entries_, points_, lists_, firsts_;
+  std::size_t entries_, points_, lists_, firsts_, outs_;
   std::size_t vertices_, edges_, loops_, faces_, shells_;
 };
 

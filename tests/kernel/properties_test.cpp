@@ -80,12 +80,15 @@ RC_GTEST_PROP(EulerProperties, OperatorThenInverseRestoresAnEqualBody, (int whic
   }
 }
 
-// Where each loop starts: Body::equals lets a loop start at any of its half-edges, but a
-// rollback restores the start too (kernel/transaction.cpp): repairs that walk a loop from
-// its start must meet after a refused repair what they met before it.
+// Where each loop starts and which half-edge each vertex keeps: Body::equals lets a loop
+// start at any of its half-edges (and a vertex name any), but a rollback restores them
+// too (kernel/transaction.cpp): repairs that walk a loop from its start, or a vertex's
+// edges from its own, must meet after a refused repair what they met before it.
 std::string loop_starts_differ(const Body& a, const Body& b) {
   for (LoopH l : b.loops())
     if (a.first(l) != b.first(l)) return l.str() + " starts at " + a.first(l).str() + ", before at " + b.first(l).str();
+  for (VertexH v : b.vertices())
+    if (a.out(v) != b.out(v)) return v.str() + " leaves by " + a.out(v).str() + ", before by " + b.out(v).str();
   return "";
 }
 
