@@ -295,6 +295,10 @@ struct Refusals {
   }
 };
 
+// Whether refusals are taken over (Replay, Refusals): not with the shortcuts off, nor
+// with a test's veto hook, which may count its calls (every attempt is made again then).
+bool takes_over_refusals(const BeautifyOptions& options) { return options.shortcuts && !options.veto; }
+
 // Runs one pass over `queue`; returns what its committed repairs touched. Problems it
 // does not repair stay in `left_of_type`.
 Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::vector<Problem> queue_in,
@@ -333,12 +337,13 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     }
     Touched touched;
     detail::OriginalFaces original;
+    const bool vetoed = options.unsolved.count({p.type, p.elements}) > 0;
     const RepairEntry* before = replay ? replay->refusal_for(p) : nullptr;
-    if (!before && refusals && !options.unsolved.count({p.type, p.elements})) before = refusals->standing(b, p);
+    if (!before && refusals && !vetoed) before = refusals->standing(b, p);
     RepairEntry entry = before ? *before : attempt(b, p, tol, options, *pass, touched, &original, memo);
     report.refusals_taken_over += before != nullptr;
     if (replay) replay->record(entry);
-    if (refusals && !entry.repaired() && !options.unsolved.count({p.type, p.elements})) refusals->refused(entry);
+    if (refusals && !entry.repaired() && !vetoed) refusals->refused(entry);
     if (refusals && entry.repaired()) refusals->changed(b, touched);
     const bool ok = entry.repaired(), touching = entry.touching;
     report.problems.push_back(std::move(entry));
@@ -530,7 +535,7 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
       const std::size_t made = unsettled.size();
       since_refresh =
           run_queue(b, tol, find_pass(t), std::move(queue), r, options, left, &unsettled, &q.memo, replay,
-                    options.veto || !options.shortcuts ? nullptr : &refusals);
+                    takes_over_refusals(options) ? &refusals : nullptr);
       for (std::size_t i = made; i < unsettled.size(); ++i) unsettled[i].round = round;
       for (std::size_t i = first_entry; i < r.problems.size(); ++i) repaired += r.problems[i].repaired();
       q.by_type[slot(t)] = std::move(left);  // done with this type: what stays is left
@@ -628,7 +633,6 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
   BeautifyOptions options = options_in;
   if (!(options.lies_on > 0)) options.lies_on = lies_on_limit(tol, check_geometry(b, tol.precision, detect_threads()).max_deviation);
   RoundVetoes vetoes;
-  // A test's veto hook may count its calls: every attempt is made again then.
   Replay replay;
   int runs = 0, taken_over = 0;
   constexpr int kRunsWithProvisional = 3;
@@ -636,7 +640,7 @@ BeautifyReport beautify(Body& b, const geo::Tolerances& tol, const BeautifyOptio
     Transaction whole(b);
     RoundVetoes unsolved;
     BeautifyReport r =
-        beautify_once(b, tol, options, vetoes, unsolved, options.veto || !options.shortcuts ? nullptr : &replay);
+        beautify_once(b, tol, options, vetoes, unsolved, takes_over_refusals(options) ? &replay : nullptr);
     replay.next_run();
     r.runs = ++runs;
     // Bounded: each run ended with a repair unsolved refuses at least one more, but each
