@@ -156,6 +156,7 @@ struct SurfaceCache {
   // back within that distance, which the parts kintsugi repairs (faces whose features
   // are far larger than its tolerance) do not.
   double near_enough = Precision::Confusion();
+  Bnd_Box box;  // of the surface within its bounds (void when unbounded)
   std::mutex m;
 };
 struct CurveCache {
@@ -187,9 +188,8 @@ SurfaceCache& surface_cache(const Surface& s) {
     const GeomAbs_SurfaceType type = c->adaptors[0].GetType();
     c->spans = type == GeomAbs_BSplineSurface || type == GeomAbs_BezierSurface;
     if (c->bounded) {
-      Bnd_Box box;
-      BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, box);
-      if (!box.IsVoid()) c->near_enough = std::max(Precision::Confusion(), 1e-2 * std::sqrt(box.SquareExtent()));
+      BndLib_AddSurface::Add(GeomAdaptor_Surface(c->surface), 0.0, c->box);
+      if (!c->box.IsVoid()) c->near_enough = std::max(Precision::Confusion(), 1e-2 * std::sqrt(c->box.SquareExtent()));
     }
     *slot = c;
   }
@@ -354,6 +354,29 @@ bool seeded_foot(SurfaceCache& c, const gp_Pnt& target, gp_Pnt2d* uv) {
   return found;
 }
 
+// A point a thousand times the surface's extent away from it (a region solve that ran off,
+// measured: Motor-c.brep at 4x its tolerance, targets 1e10 to 1e68 away, 16 of 18 s in
+// ValueOfUV): the nearest seed, as ValueOfUV's answer would be no better for anything.
+// There Gauss-Newton cannot converge (a step changes the distance by less than its
+// rounding) and ValueOfUV's global search costs tens of milliseconds. Such a point is
+// off the surface by far more than any tolerance whatever its foot, so no decision
+// depends on where exactly the foot is. False when the point is nearer.
+bool far_foot(SurfaceCache& c, const gp_Pnt& target, gp_Pnt2d* uv) {
+  if (c.box.IsVoid() || !c.box.IsOut(target)) return false;
+  double x0, y0, z0, x1, y1, z1;
+  c.box.Get(x0, y0, z0, x1, y1, z1);
+  const double dx = std::max({x0 - target.X(), target.X() - x1, 0.0}), dy = std::max({y0 - target.Y(), target.Y() - y1, 0.0}),
+               dz = std::max({z0 - target.Z(), target.Z() - z1, 0.0});
+  if (!(dx * dx + dy * dy + dz * dz > 1e6 * c.box.SquareExtent())) return false;
+  if (!c.seeds_built) build_seeds(c);
+  if (c.seed_xyz.empty()) return false;
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < c.seed_xyz.size(); ++i)
+    if (c.seed_xyz[i].SquareDistance(target) < c.seed_xyz[best].SquareDistance(target)) best = i;
+  *uv = c.seed_uv[best];
+  return true;
+}
+
 // ValueOfUV, for what the other searches do not reach. The same point comes back (a
 // vertex on a degenerate side of the surface, where |S_u| vanishes and Gauss-Newton
 // cannot converge, is projected once per sample of each of its edges, in every measure
@@ -398,6 +421,10 @@ Vec2 surface_project(const Surface& s, const Vec3& p) {
   if (!found) {
     ++c.counts.seeded;
     found = seeded_foot(c, target, &uv);
+  }
+  if (!found && far_foot(c, target, &uv)) {
+    ++c.counts.far;
+    found = true;
   }
   if (!found) uv = global_foot(c, target);
   c.last = uv;

@@ -42,9 +42,11 @@ Handle(Geom_Curve) geom_curve(const Curve& c);        // BSplineCurve only; null
 // How the projections onto a free-form surface went (geo::closest_point and the
 // parameters of its points): how many there were, how many did not follow the last foot
 // and searched the seed grid, and how many of those found no foot there and were left to
-// ShapeAnalysis_Surface::ValueOfUV (a costly grid search; its memo's hits not counted).
+// ShapeAnalysis_Surface::ValueOfUV (a costly grid search; its memo's hits not counted),
+// and how many were answered by the nearest seed instead, being over a thousand times
+// the surface's extent away from it.
 struct ProjectionCounts {
-  long projections = 0, seeded = 0, value_of_uv = 0;
+  long projections = 0, seeded = 0, value_of_uv = 0, far = 0;
 };
 ProjectionCounts projection_counts(const Surface& s);
 
