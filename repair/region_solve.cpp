@@ -124,6 +124,17 @@ struct OnFixedSeam {
   }
 };
 
+ceres::Solver::Options solver_options() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = 100;
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-20;
+  options.parameter_tolerance = 1e-15;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
 double max_distance(const geo::Surface& s, const std::vector<geo::Vec3>& pts) {
   double m = 0.0;
   for (const auto& q : pts) m = std::max(m, std::abs(geo::signed_distance(s, q)));
@@ -592,13 +603,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, points[c.vertex].data());
       }
     }
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    options.max_num_iterations = 100;
-    options.function_tolerance = 1e-14;
-    options.gradient_tolerance = 1e-20;
-    options.parameter_tolerance = 1e-15;
-    options.logging_type = ceres::SILENT;
+    ceres::Solver::Options options = solver_options();
     // Continuation: the hard weight grows from 10x the data weight to 1/precision by 100x
     // per solve, each starting where the last ended. Started at full weight, the solver
     // crawls along the stiff valley where a surface and its vertices move together.
@@ -648,6 +653,69 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       if (double d = (o.points[i] - b.point(vlist[i])).norm(); !(d <= tol.length)) o.vertices_too_far.push_back({d, i});
     return o;
   };
+  // The points whose fixed surfaces alone cannot hold them: each point with a constraint
+  // on fixed faces only (on a fixed surface, on a fixed seam, tangent between two fixed
+  // surfaces) that it does not meet now is solved for alone, under those constraints and
+  // its prior, with the weights' continuation of `run`. The full solve must meet them
+  // too, with the same point free and nothing else to help it (the surfaces are fixed),
+  // so where these cannot be met it cannot either: it would end, after up to 400
+  // iterations crawling along the valley where two fixed surfaces touch (a pipe's bend
+  // and its straight run, tangent), with the same constraints unmet (measured:
+  // MODERN_Sink_1.brep at 4x its tolerance, 334 of its 605 solves ran all four stages to
+  // their limit, ~40 ms each). Returns the unmet constraints, empty when all are met.
+  auto fixed_conflict = [&]() {
+    std::vector<std::pair<double, std::size_t>> unmet;  // residual, constraint
+    auto fixed = [&](const Constraint& c) {
+      return !face_index.count(c.face) && (!c.other.valid() || !face_index.count(c.other));
+    };
+    std::set<std::size_t> points;
+    for (const Constraint& c : constraints)
+      if (fixed(c) && !(residual_now(c) <= tol.precision)) points.insert(c.vertex);
+    if (points.empty()) return unmet;
+    double hard = w_hard;
+    std::map<std::size_t, std::array<double, 3>> at;
+    for (std::size_t i : points) at[i] = {start[i].x(), start[i].y(), start[i].z()};
+    ceres::Problem problem;
+    std::vector<double*> blocks;
+    for (auto& [i, x] : at)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{start[i], w_prior}),
+                               nullptr, x.data());
+    std::vector<std::size_t> held;
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+      const Constraint& c = constraints[k];
+      if (!at.count(c.vertex) || !fixed(c)) continue;
+      held.push_back(k);
+      double* x = at[c.vertex].data();
+      if (c.kind == CKind::tangent) {
+        ceres::CostFunction* f = geo::on_tangent_surfaces(nullptr, *params_of(b.surface(c.face)), nullptr,
+                                                          *params_of(b.surface(c.other)), c.length, &hard, blocks);
+        blocks.push_back(x);
+        problem.AddResidualBlock(f, nullptr, blocks);
+      } else if (c.kind == CKind::on_seam) {
+        const geo::Frame& frame = *seam_frame(b.surface(c.face));
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OnFixedSeam, 1, 3>(
+                                     new OnFixedSeam{frame.origin, frame.z.cross(frame.x).normalized(), &hard}),
+                                 nullptr, x);
+      } else {
+        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, x);
+      }
+    }
+    ceres::Solver::Options options = solver_options();
+    ceres::Solver::Summary summary;
+    geo::quiet_solver_log();
+    for (hard = 10 * w_data;; hard = std::min(w_hard, 100 * hard)) {
+      ceres::Solve(options, &problem, &summary);
+      if (hard >= w_hard) break;
+    }
+    for (std::size_t k : held) {
+      const Constraint& c = constraints[k];
+      const auto& x = at[c.vertex];
+      const double r = residual_of(c, b.surface(c.face), c.other.valid() ? &b.surface(c.other) : nullptr,
+                                   geo::Vec3(x[0], x[1], x[2]));
+      if (!(r <= tol.precision)) unmet.push_back({std::isfinite(r) ? r : HUGE_VAL, k});
+    }
+    return unmet;
+  };
   auto name = [&](std::size_t k) {
     const Constraint& c = constraints[k];
     const std::string at = c.vertex < vlist.size() ? vlist[c.vertex].str() : "a point of an edge";
@@ -693,6 +761,18 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   if (const SolveOutcome* seen = g_succeeded_solves.find(input)) {
     o = *seen;
   } else {
+    std::vector<std::pair<double, std::size_t>> fixed_unmet = fixed_conflict();
+    if (!fixed_unmet.empty()) {
+      std::sort(fixed_unmet.begin(), fixed_unmet.end(), [](const auto& a, const auto& c) { return a.first > c.first; });
+      out.solved = true;
+      out.max_residual = fixed_unmet.front().first;
+      out.why = "the new geometry cannot meet these constraints together within the modelling precision " +
+                fmt(tol.precision) + ", its fixed surfaces not meeting there:";
+      for (std::size_t i = 0; i < fixed_unmet.size() && i < 8; ++i)
+        out.why += (i ? ", " : " ") + name(fixed_unmet[i].second) + " (off " + fmt(fixed_unmet[i].first) + ")";
+      if (fixed_unmet.size() > 8) out.why += " and " + std::to_string(fixed_unmet.size() - 8) + " more";
+      return failed(out);
+    }
     o = run(constraints.size());
     if (o.met()) g_succeeded_solves.add(input, o);
   }

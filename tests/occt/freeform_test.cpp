@@ -20,6 +20,8 @@
 // OpenCASCADE's headers after ours: its Handle(x) macro would hit kernel/handles.h.
 #include "geometry/occt/freeform_occt.h"
 
+#include <Bnd_Box.hxx>
+#include <BndLib_AddSurface.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -312,6 +314,44 @@ TEST(FreeForm, ProjectionNeedsNoGridSearchAtCornersOrNearAnAxis) {
     EXPECT_NEAR(std::abs(foot.distance), 4.7, 1e-7) << "point " << k;
     EXPECT_EQ(geo::occt::projection_counts(fresh).value_of_uv, 0) << "point " << k;
   }
+}
+
+// A point far off a surface (a region solve that ran off: Motor-c.brep at 4x its
+// tolerance projected points 1e10 to 1e68 away, 16 of 18 s in ValueOfUV's grid search).
+// Beyond a thousand times the surface's extent the nearest seed answers: its distance is
+// the least within a grid cell, a relative error below 1e-4 there, and no grid search.
+TEST(FreeForm, AFarPointTakesTheNearestSeedWithoutAGridSearch) {
+  geo::occt::register_freeform_backend();
+  Handle(Geom_BSplineSurface) patch = wavy_patch(0.6);
+  double u0, u1, v0, v1;
+  patch->Bounds(u0, u1, v0, v1);
+  Bnd_Box box;
+  BndLib_AddSurface::Add(GeomAdaptor_Surface(patch), 0.0, box);
+  const double extent = std::sqrt(box.SquareExtent());
+  int far = 0;
+  for (const double reach : {1e4, 1e8, 1e60})
+    for (const gp_Dir d : {gp_Dir(1, 0, 0), gp_Dir(0, -1, 0), gp_Dir(0.3, 0.4, 1), gp_Dir(-1, 1, -1)}) {
+      const gp_Pnt p = patch->Value(0.5 * (u0 + u1), 0.5 * (v0 + v1)).Translated(reach * extent * gp_Vec(d));
+      const geo::Surface fresh = geo::occt::bspline_data(patch);
+      const geo::Vec2 uv = geo::parameters(fresh, geo::Vec3(p.X(), p.Y(), p.Z()));
+      ASSERT_TRUE(uv.x() >= u0 && uv.x() <= u1 && uv.y() >= v0 && uv.y() <= v1) << reach;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int i = 0; i <= 200; ++i)
+        for (int j = 0; j <= 200; ++j)
+          nearest = std::min(nearest, patch->Value(u0 + (u1 - u0) * i / 200, v0 + (v1 - v0) * j / 200).Distance(p));
+      EXPECT_LE(patch->Value(uv.x(), uv.y()).Distance(p), nearest * (1 + 1e-4)) << "reach " << reach;
+      const geo::occt::ProjectionCounts counts = geo::occt::projection_counts(fresh);
+      EXPECT_EQ(counts.value_of_uv, 0) << "reach " << reach;
+      far += counts.far > 0;
+    }
+  // Which of them the seed grid's Gauss-Newton answers by itself depends on rounding; on
+  // this patch six do not (the reaches 1e4 and 1e8).
+  EXPECT_GT(far, 0);
+  // Ten extents away is not far: the search proper answers.
+  const geo::Surface fresh = geo::occt::bspline_data(patch);
+  const gp_Pnt p = patch->Value(u0, v0).Translated(10 * extent * gp_Vec(1, 1, 1));
+  (void)geo::parameters(fresh, geo::Vec3(p.X(), p.Y(), p.Z()));
+  EXPECT_EQ(geo::occt::projection_counts(fresh).far, 0);
 }
 
 // The largest distance between the surface along pcurve pc and the foot on it of curve
