@@ -662,7 +662,9 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   // iterations crawling along the valley where two fixed surfaces touch (a pipe's bend
   // and its straight run, tangent), with the same constraints unmet (measured:
   // MODERN_Sink_1.brep at 4x its tolerance, 334 of its 605 solves ran all four stages to
-  // their limit, ~40 ms each). Returns the unmet constraints, empty when all are met.
+  // their limit, ~40 ms each). Returns the unmet constraints, empty when all are met, and
+  // puts in `too_far` the vertices that meet them only further than the tolerance away.
+  std::vector<std::pair<double, std::size_t>> too_far;  // by fixed_conflict: distance, vertex
   auto fixed_conflict = [&]() {
     std::vector<std::pair<double, std::size_t>> unmet;  // residual, constraint
     auto fixed = [&](const Constraint& c) {
@@ -714,6 +716,11 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
                                    geo::Vec3(x[0], x[1], x[2]));
       if (!(r <= tol.precision)) unmet.push_back({std::isfinite(r) ? r : HUGE_VAL, k});
     }
+    // Met, but only by moving a vertex further than the tolerance: the full solve, whose
+    // vertex must meet the same surfaces, would end refusing that (vertices_too_far).
+    for (auto& [i, x] : at)
+      if (i < vlist.size())
+        if (const double d = (geo::Vec3(x[0], x[1], x[2]) - start[i]).norm(); !(d <= tol.length)) too_far.push_back({d, i});
     return unmet;
   };
   auto name = [&](std::size_t k) {
@@ -771,6 +778,15 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       for (std::size_t i = 0; i < fixed_unmet.size() && i < 8; ++i)
         out.why += (i ? ", " : " ") + name(fixed_unmet[i].second) + " (off " + fmt(fixed_unmet[i].first) + ")";
       if (fixed_unmet.size() > 8) out.why += " and " + std::to_string(fixed_unmet.size() - 8) + " more";
+      return failed(out);
+    }
+    if (!too_far.empty()) {
+      std::sort(too_far.begin(), too_far.end(), [](const auto& a, const auto& c) { return a.first > c.first; });
+      out.solved = true;
+      out.why = "the new topology forces vertices further than the tolerance " + fmt(tol.length) +
+                " to meet their fixed surfaces:";
+      for (std::size_t i = 0; i < too_far.size() && i < 8; ++i)
+        out.why += (i ? ", " : " ") + vlist[too_far[i].second].str() + " by " + fmt(too_far[i].first);
       return failed(out);
     }
     o = run(constraints.size());

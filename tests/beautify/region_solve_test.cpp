@@ -226,6 +226,44 @@ TEST(BeautifySolve, FourPinnedCornersNotOnOnePlaneAreNamed) {
   EXPECT_TRUE(s.b.equals(before, &why)) << why;
 }
 
+// A vertex whose fixed faces (faces the solve does not move) cannot hold it is refused
+// by those surfaces alone, before the full solve (which would crawl for up to 400
+// iterations and end with the same constraints unmet). The centre quad of a box's top is
+// solved; one fixed top quad beside one of its corners is raised, parallel (the corner
+// cannot be on both it and the other fixed top quads), or turned so that it meets them
+// only further than the tolerance from the corner. Both are named and the body is left
+// as it was. Its sibling FourPinnedCornersOnOnePlaneAreMet keeps the precheck from
+// refusing what the full solve meets.
+TEST(BeautifySolve, AVertexItsFixedSurfacesCannotHoldIsRefusedByThemAlone) {
+  const geo::Tolerances tol{0.01, 1e-8};
+  for (const bool parallel : {true, false}) {
+    PinnedQuad s = pinned_quad({0.0, 0.0, 0.0, 0.0});
+    const VertexH c = s.corners[0];
+    FaceH raised;
+    for (HalfedgeH h : s.b.outgoing(c))
+      if (FaceH f = s.b.face(h); f != s.quad && std::get<geo::Plane>(s.b.surface(f)).frame.z.z() > 0.99) raised = f;
+    ASSERT_TRUE(raised.valid());
+    const geo::Vec3 at = s.b.point(c) + geo::Vec3(0, 0, 1e-4);
+    // Turned: it meets the plane of the others 0.02 (twice the tolerance) from the corner.
+    const geo::Vec3 n = parallel ? geo::Vec3::UnitZ() : geo::Vec3(1e-4 / 0.02, 0, 1);
+    s.b.set_surface(raised, plane_through(at, n), s.b.same_sense(raised));
+    const Body before = s.b.clone();
+    Touched t;
+    t.faces.insert(s.quad);
+    const detail::RegionSolve r = detail::solve_region(s.b, t, s.original, tol);
+    ASSERT_FALSE(r.why.empty()) << parallel;
+    RecordProperty(parallel ? "parallel" : "turned", r.why);
+    if (parallel) {
+      EXPECT_NE(r.why.find("its fixed surfaces not meeting there"), std::string::npos) << r.why;
+      EXPECT_NE(r.why.find(c.str() + " on " + raised.str()), std::string::npos) << r.why;
+    } else {
+      EXPECT_NE(r.why.find("to meet their fixed surfaces: " + c.str() + " by 0.02"), std::string::npos) << r.why;
+    }
+    std::string why;
+    EXPECT_TRUE(s.b.equals(before, &why)) << why;
+  }
+}
+
 // A failed solve is remembered (region_solve.cpp, SolveMemo): the pipeline meets the
 // same failing problem again in later rounds and reruns. The memo must answer only the
 // same input: the second quad below has the same elements under the same names, with its
