@@ -567,8 +567,13 @@ std::vector<Violation> region_violations(const Body& b, const Region& r, const g
     check_face_loops(b, f, it == g.near.end() ? b.loops_of(f) : it->second.loops, tol, out, false);
   }
   if (out.empty() && g_external) {
-    Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt, nullptr};
-    if (std::string why = g_external(b, grown); !why.empty()) out.push_back({"external_check", {}, why, 0.0});
+    Region grown{g.vs, g.es, g.fs, std::move(g.near), std::nullopt, nullptr, {}};
+    for (FaceH f : r.provisional) {
+      grown.faces.erase(f);
+      grown.near.erase(f);
+    }
+    if (!grown.faces.empty())
+      if (std::string why = g_external(b, grown); !why.empty()) out.push_back({"external_check", {}, why, 0.0});
   }
   return out;
 }

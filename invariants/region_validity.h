@@ -15,7 +15,8 @@
 //     (outer loops counter-clockwise about the outward normal, holes clockwise) on a
 //     plane, cylinder or cone face;
 //   * whatever an external check registered with `set_external_region_check` reports
-//     (with OpenCASCADE: that the model converts, and BRepCheck of the touched faces).
+//     (with OpenCASCADE: that the model converts, and BRepCheck of the touched faces),
+//     but for the faces the caller keeps provisionally (Region::provisional).
 // The region is the given elements and everything around them: the edges at a touched
 // vertex, the faces beside a touched edge, and the vertices and edges of touched faces.
 //
@@ -71,6 +72,12 @@ struct Region {
   // Where the loops of faces with many loops were after the last committed change
   // (invariants/loop_index.h), when the caller keeps that; else they are scanned.
   const LoopBoxIndex* loop_index = nullptr;
+  // Faces whose loops touch and which the caller keeps so provisionally (beautify: a
+  // later repair must remove the touch, or its run is undone). Our own checks see them
+  // as always; the external check does not: OpenCASCADE calls a loop that touches itself
+  // unorientable, which is the touch itself. The caller puts them to the external check
+  // once the touch is gone.
+  std::set<FaceH> provisional;
 };
 
 // A face with more loops than this is checked near the change only (see above).

@@ -73,6 +73,9 @@ struct Unsettled {
   // The repair left loops of its faces touching (a pinch zipped on one side, its next zip
   // still to come): settled when a later repair has removed the touch.
   bool touching = false;
+  // The touch is gone but the external check (which did not see the faces while they
+  // touched) rejects them: why.
+  std::string external;
 };
 
 // Where loops of the faces in `faces` touch without crossing (region_validity.h: a face
@@ -85,6 +88,14 @@ std::string touching_loops(const Body& b, const std::set<FaceH>& faces, const ge
   for (const Violation& v : loop_violations(b, few, tol))
     if (v.invariant == "loop_touches_itself" || v.invariant == "loops_touch") return v.detail;
   return "";
+}
+
+// The faces of `faces` whose loops touch (as touching_loops finds them).
+std::set<FaceH> touching_faces(const Body& b, const std::set<FaceH>& faces, const geo::Tolerances& tol) {
+  std::set<FaceH> out;
+  for (FaceH f : faces)
+    if (b.alive(f) && b.loops_of(f).size() <= kManyLoops && !touching_loops(b, {f}, tol).empty()) out.insert(f);
+  return out;
 }
 
 // The faces whose surface was set from journal entry `from` on: the validity gate checks
@@ -163,9 +174,14 @@ RepairEntry attempt(Body& b, const Problem& p, const geo::Tolerances& tol, const
     const double lies_on = solve_why.empty() ? at_precision : std::max(at_precision, tol.length);
     touched.reshaped = surfaces_set_since(b.journal(), tx.first_entry());
     detail::touch_rearranged_loops(b, tx.first_entry(), touched);
-    std::string invalid = region_validity(
-        b, {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped, memo ? &memo->loops : nullptr}, tol,
-        lies_on, at_precision);
+    // Faces left touching are kept provisionally (below) when this run keeps anything so:
+    // the external check sees them once a later repair has removed the touch (settle).
+    std::set<FaceH> provisional;
+    if (options.provisional) provisional = touching_faces(b, touched.faces, tol);
+    std::string invalid = region_validity(b,
+                                          {touched.vertices, touched.edges, touched.faces, {}, touched.reshaped,
+                                           memo ? &memo->loops : nullptr, std::move(provisional)},
+                                          tol, lies_on, at_precision);
     if (!invalid.empty()) why = "the result would not be valid: " + invalid;
   }
   if (why.empty() && options.check_topology_each_repair) {
@@ -348,7 +364,7 @@ Touched run_queue(Body& b, const geo::Tolerances& tol, const Pass* pass, std::ve
     const bool ok = entry.repaired(), touching = entry.touching;
     report.problems.push_back(std::move(entry));
     if (ok && unsettled && (!original.empty() || touching))
-      unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original), touching});
+      unsettled->push_back({report.problems.size() - 1, 0, touched, std::move(original), touching, {}});
     if (!ok) {
       left_of_type.push_back(std::move(p));
       continue;
@@ -403,10 +419,19 @@ Touched settle(Body& b, const geo::Tolerances& tol, double at_precision, std::ve
     if (u.original.empty()) {  // only touching: settled once the touch is gone
       if (!touching_loops(b, t.faces, tol).empty()) {
         still.push_back(std::move(u));
-      } else {
-        r.problems[u.entry].note += "; its faces' loops no longer touch after the later repairs";
-        r.problems[u.entry].touching = false;
+        continue;
       }
+      // Then the external check sees its faces, which it did not while they touched.
+      if (ExternalRegionCheck external = external_region_check()) {
+        Region region{t.vertices, t.edges, t.faces, {}, std::nullopt, nullptr, {}};
+        if (std::string why = external(b, region); !why.empty()) {
+          u.external = why;
+          still.push_back(std::move(u));
+          continue;
+        }
+      }
+      r.problems[u.entry].note += "; its faces' loops no longer touch after the later repairs";
+      r.problems[u.entry].touching = false;
       continue;
     }
     Transaction tx(b);
@@ -421,7 +446,12 @@ Touched settle(Body& b, const geo::Tolerances& tol, double at_precision, std::ve
       }
       if (why.empty()) {
         t.reshaped = surfaces_set_since(b.journal(), tx.first_entry());
-        why = region_validity(b, {t.vertices, t.edges, t.faces, {}, t.reshaped, nullptr}, tol, at_precision, at_precision);
+        // Faces still touching stay provisional (kept from the external check, as when the
+        // repair was committed).
+        std::set<FaceH> provisional;
+        if (u.touching) provisional = touching_faces(b, t.faces, tol);
+        why = region_validity(b, {t.vertices, t.edges, t.faces, {}, t.reshaped, nullptr, std::move(provisional)}, tol,
+                              at_precision, at_precision);
       }
       if (why.empty() && !u.touching) why = touching_loops(b, t.faces, tol);
     } catch (const std::exception& e) {
@@ -570,7 +600,10 @@ BeautifyReport beautify_once(Body& b, const geo::Tolerances& tol, const Beautify
     if (beside) continue;
     const RepairEntry& e = r.problems[u.entry];
     unsolved[{u.round, e.problem.type, e.problem.elements}] =
-        u.original.empty()
+        !u.external.empty()
+            ? "it left loops of its faces touching, and once later repairs had removed the touch they were not "
+              "valid: " + u.external
+        : u.original.empty()
             ? "it left loops of its faces touching, and no later repair removed the touch: the model would not be "
               "valid (" + e.note + ")"
             : "its geometry could not be solved to the modelling precision, even after the later repairs, and the "
