@@ -542,16 +542,6 @@ TEST(ScanParts, ATouchKeptProvisionallyIsPutToOpenCascadeOnceItIsGone) {
   expect_gated_case_passes(8, 57, 24, "filleted_post", /*all_multi=*/true);
 }
 
-// A repair whose geometry does not solve to the modelling precision is kept consistent to
-// the tolerance only, and solved again once later repairs are done (beautify's settle).
-// OpenCASCADE's checker judges at the precision, and called the faces round its vertex
-// (0.019 off at a tolerance of 0.53) unorientable: capsule_block's two slivers, the first
-// refused so, the other then with no way through. It now sees those faces once they are
-// solved.
-TEST(ScanParts, AnUnsolvedRepairIsPutToOpenCascadeOnceSolved) {
-  expect_gated_case_passes(42, 85, 24, "capsule_block", /*all_multi=*/true);
-}
-
 // A cone (cone_boss) and a cylinder (tee) each fitted twice, split along two rulings, one
 // of them also cut by a gap (cone_boss) or by a vertex a mergeable-edges defect put on it
 // (tee). Pass 8 keeps as the merged face's seam the ruling whose ends carry more edges,
