@@ -199,6 +199,9 @@ std::string written_step_problem(const std::string& path) {
 // nullopt when the case cannot be made (no place for the defect in this part, or the
 // designer's part has problems of its own at this tolerance); *skip says which.
 // What beautify made of a case (for ScanParts.ShortcutsChangeNothing).
+ExternalRegionCheck g_wrapped_gate = nullptr;
+geo::Tolerances g_case_tol{1.0, 1e-6};
+
 struct Beautified {
   Body body;
   BeautifyReport report;
@@ -206,7 +209,8 @@ struct Beautified {
 
 std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemType>& types, std::uint64_t seed,
                                    std::string* skip, bool occt_gate = false, bool shortcuts = true,
-                                   Beautified* kept = nullptr, double tol_factor = 1.0) {
+                                   Beautified* kept = nullptr, double tol_factor = 1.0,
+                                   ExternalRegionCheck wrap_gate = nullptr) {
   zoo::Rng rng(seed);
   const double t = std::exp(rng.uniform(std::log(0.05), std::log(2.0)));
   CaseResult res;
@@ -282,6 +286,13 @@ std::optional<CaseResult> run_case(const Designer& d, const std::vector<ProblemT
   // which the part's own features read as problems too, most of them refused.
   const geo::Tolerances run_tol = geo::Tolerances::for_model(tol_factor * t, model_size(out));
   if (occt_gate || std::getenv("KINTSUGI_SCAN_OCCT_GATE")) io::register_occt_region_check(out, run_tol.precision);
+  // `wrap_gate`: a test's own external check, which may call the registered one (as
+  // g_wrapped_gate) and the case's tolerance (g_case_tol).
+  if (wrap_gate) {
+    g_wrapped_gate = external_region_check();
+    g_case_tol = run_tol;
+    set_external_region_check(wrap_gate);
+  }
   BeautifyReport rep = beautify(out, run_tol, opt);
   set_external_region_check(nullptr);
   if (kept) *kept = {out, rep};
@@ -540,6 +551,51 @@ void expect_gated_case_passes(std::uint64_t base, int i, std::size_t rotation, c
 TEST(ScanParts, ATouchKeptProvisionallyIsPutToOpenCascadeOnceItIsGone) {
   expect_gated_case_passes(14, 159, 24, "spherical_pocket", /*all_multi=*/true);
   expect_gated_case_passes(8, 57, 24, "filleted_post", /*all_multi=*/true);
+}
+
+// The other way: a face kept from the checker while it touched, and refused by it once
+// the touch is gone, leaves its repair unsettled, and the run is undone. The checker here
+// is OpenCASCADE's made stricter: a face whose loop has touched itself is refused the
+// second time it is asked about after the touch is gone (the first is the gate of the
+// repair that removed the touch, which lets that repair through; the second is beautify
+// settling the repair that made the touch), once. The repair that made the touch is
+// refused with that reason in the run done again, and the model comes out valid.
+std::map<std::uint32_t, int> g_asked_since_touch;  // faces that have touched: times asked since
+std::string refuses_what_touched(const Body& b, const Region& r) {
+  for (FaceH f : r.faces) {
+    bool touches = false;
+    for (const Violation& v : loop_violations(b, {f}, g_case_tol))
+      touches = touches || v.invariant == "loop_touches_itself" || v.invariant == "loops_touch";
+    if (touches) {
+      g_asked_since_touch[f.idx()] = 0;
+    } else if (auto it = g_asked_since_touch.find(f.idx()); it != g_asked_since_touch.end() && ++it->second == 2) {
+      return f.str() + " has touched itself";
+    }
+  }
+  return g_wrapped_gate ? g_wrapped_gate(b, r) : "";
+}
+
+TEST(ScanParts, AFaceTheCheckerRefusesOnceItsTouchIsGoneUndoesItsRepair) {
+  std::vector<Designer> parts = designers();
+  ASSERT_GE(parts.size(), 24u) << "a designer part could not be built";
+  auto [d, types, seed] = plan(parts, 14, 159, 24, /*all_multi=*/true);
+  ASSERT_EQ(d->name, "spherical_pocket");
+  g_asked_since_touch.clear();
+  std::string skip;
+  Beautified kept;
+  std::optional<CaseResult> r =
+      run_case(*d, types, seed, &skip, /*occt_gate=*/true, /*shortcuts=*/true, &kept, 1.0, &refuses_what_touched);
+  ASSERT_TRUE(r) << skip;
+  EXPECT_FALSE(g_asked_since_touch.empty()) << "no repair left a loop touching: the test no longer reaches its path";
+  bool undone = false;
+  for (const RepairEntry& e : kept.report.problems)
+    undone = undone || (e.outcome == Outcome::refused &&
+                        e.reason.find("once later repairs had removed the touch they were not valid") != std::string::npos);
+  std::string all;
+  for (const RepairEntry& e : kept.report.problems) all += std::string(problem_name(e.problem.type)) + " " + outcome_name(e.outcome) + ": " + e.reason + " / " + e.note + "\n";
+  EXPECT_TRUE(undone) << r->detail << "\n" << all;
+  EXPECT_NE(r->verdict, Verdict::invalid) << r->detail;
+  EXPECT_NE(r->verdict, Verdict::step) << r->detail;
 }
 
 // A cone (cone_boss) and a cylinder (tee) each fitted twice, split along two rulings, one
