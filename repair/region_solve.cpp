@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -542,6 +543,37 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
         w_face[members[k]] = w_data * std::sqrt(std::max(area[k] / largest, 1e-6));
     }
   }
+  // Adds constraint c, at the point `x`, weighed by *hard (read at each evaluation);
+  // `solved(face)` is the parameters a solved face is solved through, nullptr for a face
+  // the solve keeps fixed. Shared by the full solve and the fixed faces' check.
+  auto add_constraint = [&](ceres::Problem& problem, const Constraint& c, double* x, const double* hard,
+                            const std::function<SurfaceParams*(FaceH)>& solved) {
+    std::vector<double*> blocks;
+    SurfaceParams* sf = solved(c.face);
+    if (c.kind == CKind::tangent) {
+      ceres::CostFunction* f = geo::on_tangent_surfaces(sf, *params_of(b.surface(c.face)), solved(c.other),
+                                                        *params_of(b.surface(c.other)), c.length, hard, blocks);
+      blocks.push_back(x);
+      problem.AddResidualBlock(f, nullptr, blocks);
+    } else if (c.kind == CKind::on_seam) {
+      const geo::Frame& frame = *seam_frame(b.surface(c.face));
+      if (sf) {
+        ceres::CostFunction* f = geo::on_solved_seam(*sf, c.x_old, frame.z, hard, blocks);
+        blocks.push_back(x);
+        problem.AddResidualBlock(f, nullptr, blocks);
+      } else {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OnFixedSeam, 1, 3>(
+                                     new OnFixedSeam{frame.origin, frame.z.cross(frame.x).normalized(), hard}),
+                                 nullptr, x);
+      }
+    } else if (sf) {
+      ceres::CostFunction* f = on_solved_surface(*sf, true, geo::Vec3::Zero(), hard, blocks);
+      blocks.push_back(x);
+      problem.AddResidualBlock(f, nullptr, blocks);
+    } else {
+      problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), hard), nullptr, x);
+    }
+  };
   // One solve without constraint `skip` (none when out of range), from the region's
   // geometry, or from `from` (an earlier solve's outcome) at the full hard weight at once.
   auto run = [&](std::size_t skip, const Outcome* from = nullptr) {
@@ -572,37 +604,12 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     for (std::size_t i = 0; i < start.size(); ++i)
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{start[i], w_prior}),
                                nullptr, points[i].data());
-    for (std::size_t k = 0; k < constraints.size(); ++k) {
-      if (k == skip) continue;
-      const Constraint& c = constraints[k];
-      auto it = face_index.find(c.face);
-      if (c.kind == CKind::tangent) {
-        auto jt = face_index.find(c.other);
-        const SurfaceParams fixed_f = *params_of(b.surface(c.face)), fixed_g = *params_of(b.surface(c.other));
-        ceres::CostFunction* f = geo::on_tangent_surfaces(
-            it != face_index.end() ? &solved_params(it->second) : nullptr, fixed_f,
-            jt != face_index.end() ? &solved_params(jt->second) : nullptr, fixed_g, c.length, &hard, blocks);
-        blocks.push_back(points[c.vertex].data());
-        problem.AddResidualBlock(f, nullptr, blocks);
-      } else if (c.kind == CKind::on_seam) {
-        const geo::Frame& frame = *seam_frame(b.surface(c.face));
-        if (it != face_index.end()) {
-          ceres::CostFunction* f = geo::on_solved_seam(solved_params(it->second), c.x_old, frame.z, &hard, blocks);
-          blocks.push_back(points[c.vertex].data());
-          problem.AddResidualBlock(f, nullptr, blocks);
-        } else {
-          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OnFixedSeam, 1, 3>(
-                                       new OnFixedSeam{frame.origin, frame.z.cross(frame.x).normalized(), &hard}),
-                                   nullptr, points[c.vertex].data());
-        }
-      } else if (it != face_index.end()) {
-        ceres::CostFunction* f = on_solved_surface(solved_params(it->second), true, geo::Vec3::Zero(), &hard, blocks);
-        blocks.push_back(points[c.vertex].data());
-        problem.AddResidualBlock(f, nullptr, blocks);
-      } else {
-        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, points[c.vertex].data());
-      }
-    }
+    auto solved_face = [&](FaceH f) -> SurfaceParams* {
+      auto it = face_index.find(f);
+      return it != face_index.end() ? &solved_params(it->second) : nullptr;
+    };
+    for (std::size_t k = 0; k < constraints.size(); ++k)
+      if (k != skip) add_constraint(problem, constraints[k], points[constraints[k].vertex].data(), &hard, solved_face);
     ceres::Solver::Options options = solver_options();
     // Continuation: the hard weight grows from 10x the data weight to 1/precision by 100x
     // per solve, each starting where the last ended. Started at full weight, the solver
@@ -678,7 +685,6 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
     std::map<std::size_t, std::array<double, 3>> at;
     for (std::size_t i : points) at[i] = {start[i].x(), start[i].y(), start[i].z()};
     ceres::Problem problem;
-    std::vector<double*> blocks;
     for (auto& [i, x] : at)
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<geo::NearPoint, 3, 3>(new geo::NearPoint{start[i], w_prior}),
                                nullptr, x.data());
@@ -687,20 +693,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
       const Constraint& c = constraints[k];
       if (!at.count(c.vertex) || !fixed(c)) continue;
       held.push_back(k);
-      double* x = at[c.vertex].data();
-      if (c.kind == CKind::tangent) {
-        ceres::CostFunction* f = geo::on_tangent_surfaces(nullptr, *params_of(b.surface(c.face)), nullptr,
-                                                          *params_of(b.surface(c.other)), c.length, &hard, blocks);
-        blocks.push_back(x);
-        problem.AddResidualBlock(f, nullptr, blocks);
-      } else if (c.kind == CKind::on_seam) {
-        const geo::Frame& frame = *seam_frame(b.surface(c.face));
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OnFixedSeam, 1, 3>(
-                                     new OnFixedSeam{frame.origin, frame.z.cross(frame.x).normalized(), &hard}),
-                                 nullptr, x);
-      } else {
-        problem.AddResidualBlock(new OnFixedSurface(b.surface(c.face), &hard), nullptr, x);
-      }
+      add_constraint(problem, c, at[c.vertex].data(), &hard, [](FaceH) -> SurfaceParams* { return nullptr; });
     }
     ceres::Solver::Options options = solver_options();
     ceres::Solver::Summary summary;
