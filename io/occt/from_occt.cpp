@@ -7,6 +7,7 @@
 // one edge with both half-edges in that face's loop. Half-edges no face uses are free
 // edges' far sides: they are linked into border cycles at the end.
 #include "io/occt/convert.h"
+#include "io/occt/swept_elementary.h"
 
 #include "geometry/freeform.h"
 #include "geometry/occt/freeform_occt.h"
@@ -209,7 +210,13 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   double tol = std::max(1e-6, BRep_Tool::Tolerance(face));
   r.type = occt_surface_name(s);
   Handle(Geom_Surface) freeform = s;
-  if (!s->IsKind(STANDARD_TYPE(Geom_BSplineSurface)) && !s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) {
+  Handle(Geom_Surface) ana;
+  {
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    ana = swept_elementary(s, u0, u1, v0, v1, tol);  // from the sweep's own data
+  }
+  if (ana.IsNull() && !s->IsKind(STANDARD_TYPE(Geom_BSplineSurface)) && !s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) {
     double u0, u1, v0, v1;
     BRepTools::UVBounds(face, u0, u1, v0, v1);
     try {
@@ -218,8 +225,7 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
       freeform.Nullify();
     }
   }
-  Handle(Geom_Surface) ana;
-  if (!freeform.IsNull()) {
+  if (ana.IsNull() && !freeform.IsNull()) {
     GeomLib_IsPlanarSurface planar(freeform, tol);
     if (planar.IsPlanar()) {
       ana = new Geom_Plane(planar.Plan());

@@ -378,6 +378,12 @@ std::vector<Designer> designers() {
       dropped.push_back(p.name + ": " + (ok ? err : "OpenCASCADE could not write it"));
       continue;
     }
+    // A part OpenCASCADE's own operators left invalid (a fillet between two cones is a
+    // B-spline 3e-6 off its edges) is no designer's model to score repairs against.
+    if (io::OcctVerdict v = io::occt_check(in->body); !v.valid) {
+      dropped.push_back(p.name + ": not valid as read: " + (v.problems.empty() ? "" : v.problems[0]));
+      continue;
+    }
     Designer d{p.name, std::move(in->body), 0};
     d.size = model_size(d.body);
     out.push_back(std::move(d));

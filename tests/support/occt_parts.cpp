@@ -3,7 +3,9 @@
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
@@ -11,10 +13,12 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepPrimAPI_MakeWedge.hxx>
 #include <BRep_Tool.hxx>
+#include <GC_MakeArcOfCircle.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Curve.hxx>
 #include <Precision.hxx>
@@ -25,6 +29,8 @@
 #include <TopoDS.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Pnt.hxx>
+#include <gp_Pnt2d.hxx>
+#include <gp_Vec2d.hxx>
 
 #include <cmath>
 #include <functional>
@@ -324,6 +330,124 @@ TopoDS_Shape cross_bore_block() {
   return cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-5, 40, 30), gp::DX()), 10, 110).Shape());
 }
 
+
+// Parts added in session 35, each with geometry the earlier ones lack: a surface off every
+// axis, non-tangent meetings of curved surfaces, concave fillets round a pocket, planes
+// meeting at angles other than 90 degrees.
+
+// A block 100 x 80 x 50 whose top falls away 20 degrees towards -x over two thirds of its
+// length (a ridge where the slope meets the flat), with a bore r 8 drilled square to the
+// slope: a cylinder off every axis, meeting the slope in a circle and the bottom in an
+// ellipse.
+TopoDS_Shape inclined_bore_block() {
+  const double a = 20 * M_PI / 180;
+  const gp_Dir n(-std::sin(a), 0, std::cos(a));  // the slope's outward normal
+  const gp_Dir along(std::cos(a), 0, std::sin(a));  // up the slope; n x along = +y
+  const gp_Pnt on(50, 40, 40);                     // a point of the slope
+  // A box standing on the slope (its z along n), wide enough to take the top off.
+  const gp_Pnt corner = on.Translated(gp_Vec(along) * -100 + gp_Vec(0, -100, 0));
+  TopoDS_Shape s = cut(box(0, 0, 0, 100, 80, 50), BRepPrimAPI_MakeBox(gp_Ax2(corner, n, along), 200, 200, 100).Shape());
+  const gp_Pnt at(40, 40, 40 + std::tan(a) * (40 - 50));  // on the slope, 10 before `on`
+  const gp_Pnt start = at.Translated(gp_Vec(n) * 20);
+  return cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(start, n.Reversed()), 8, 150).Shape());
+}
+
+// A knob: a stem r 12 rising 40 from a plate 90 x 90 x 12, capped by a ball r 18 whose
+// centre is 10 above the stem's top (ball and stem meet at an angle in a circle, not
+// tangent); the stem's foot filleted r 4.
+TopoDS_Shape knob() {
+  TopoDS_Shape s = fuse(box(-45, -45, 0, 90, 90, 12), zcyl(0, 0, 12, 12, 40));
+  s = fuse(s, BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 62), 18).Shape());
+  return fillet(s, curve_edges_where(s, circle_at(12, 12)), 4);
+}
+
+// A plate 120 x 120 x 20 with a centre bore r 15 (its top edge chamfered 4) and an O-ring
+// groove round it: a torus (R 38, r 5) whose centre circle lies in the top face, so the
+// groove is half a torus meeting the top square to it.
+TopoDS_Shape oring_plate() {
+  TopoDS_Shape s = cut(box(-60, -60, 0, 120, 120, 20), zcyl(0, 0, -5, 15, 30));
+  s = chamfer(s, curve_edges_where(s, circle_at(20, 15)), 4);
+  return cut(s, BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 20), gp::DZ()), 38, 5).Shape());
+}
+
+// A hexagonal prism 60 across the flats, 50 high, its six vertical edges chamfered 5
+// (planes meeting at 150 degrees), with a blind hole r 10, 20 deep, in its top.
+TopoDS_Shape chamfered_hex_prism() {
+  const double R = 60 / std::sqrt(3.0);
+  BRepBuilderAPI_MakePolygon hex;
+  for (int i = 0; i < 6; ++i) hex.Add(gp_Pnt(R * std::cos(i * M_PI / 3), R * std::sin(i * M_PI / 3), 0));
+  hex.Close();
+  TopoDS_Shape s = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(hex.Wire()).Face(), gp_Vec(0, 0, 50)).Shape();
+  s = chamfer(s, edges_where(s, gp::DZ(), [](const gp_Pnt&) { return true; }), 5);
+  return cut(s, zcyl(0, 0, 30, 10, 30));
+}
+
+// A spindle revolved from a sketch, as a modeller draws a turned part: a cylinder r 10,
+// a cone out to r 25, a cone back to r 12 and a cylinder r 12 (cone meets cylinder and
+// cone at angles), the cones' ridge rounded r 6 in the sketch (an arc: a torus tangent to
+// both; OpenCASCADE's fillet between two cones makes a B-spline surface instead).
+TopoDS_Shape spindle() {
+  const gp_Pnt2d a(10, 30), p(25, 50), c(12, 70);  // the ridge p between the cones
+  const double r = 6;
+  const gp_Vec2d u = gp_Vec2d(p, a).Normalized(), v = gp_Vec2d(p, c).Normalized();
+  const double half = 0.5 * std::acos(u.Dot(v));   // half the angle at the ridge
+  const gp_Pnt2d t1 = p.Translated(u * (r / std::tan(half))), t2 = p.Translated(v * (r / std::tan(half)));
+  const gp_Vec2d in = (u + v).Normalized();
+  const gp_Pnt2d centre = p.Translated(in * (r / std::sin(half)));
+  const gp_Pnt2d mid = centre.Translated(in * -r);
+  auto at = [](const gp_Pnt2d& q) { return gp_Pnt(q.X(), 0, q.Y()); };
+  BRepBuilderAPI_MakeWire w;
+  const std::vector<gp_Pnt2d> before = {{0, 0}, {10, 0}, a, t1}, after = {t2, c, {12, 100}, {0, 100}, {0, 0}};
+  for (std::size_t i = 0; i + 1 < before.size(); ++i) w.Add(BRepBuilderAPI_MakeEdge(at(before[i]), at(before[i + 1])).Edge());
+  w.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(at(t1), at(mid), at(t2)).Value()).Edge());
+  for (std::size_t i = 0; i + 1 < after.size(); ++i) w.Add(BRepBuilderAPI_MakeEdge(at(after[i]), at(after[i + 1])).Edge());
+  if (!w.IsDone()) throw std::runtime_error("spindle sketch not closed");
+  return BRepPrimAPI_MakeRevol(BRepBuilderAPI_MakeFace(w.Wire()).Face(), gp_Ax1(gp::Origin(), gp::DZ())).Shape();
+}
+
+// A plate 140 x 100 x 25 with a pocket 80 x 50, 15 deep, milled the way a cutter leaves
+// it: its four vertical corners filleted r 10, then its floor's edges filleted r 4
+// (concave cylinders along the sides and tori in the corners).
+TopoDS_Shape filleted_pocket_plate() {
+  TopoDS_Shape s = cut(box(0, 0, 0, 140, 100, 25), box(30, 25, 10, 80, 50, 30));
+  s = fillet(s, edges_where(s, gp::DZ(), [](const gp_Pnt& m) {
+               return m.X() > 1 && m.X() < 139 && m.Y() > 1 && m.Y() < 99;
+             }),
+             10);
+  return fillet(s, curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double b) {
+                  return std::abs(c->Value(a).Z() - 10) < 1e-6 && std::abs(c->Value(b).Z() - 10) < 1e-6;
+                }),
+                4);
+}
+
+// A bracket bent the way sheet stock is not: a base 10 thick and an arm 10 thick leaning
+// 30 degrees back from upright, one extruded profile 60 wide (planes at 120 and 60
+// degrees), the inside of the bend filleted r 8 and a hole r 8 through the base.
+TopoDS_Shape leaning_bracket() {
+  const double s30 = 0.5, c30 = std::sqrt(3.0) / 2;
+  const gp_Pnt2d d(15, 10), e(d.X() - 60 * s30, d.Y() + 60 * c30);  // the arm's inner face
+  const gp_Pnt2d f(e.X() - 10 * c30, e.Y() - 10 * s30);             // its outer face's top
+  const gp_Pnt2d g(f.X() + f.Y() / c30 * s30, 0);                   // ... down to the floor
+  BRepBuilderAPI_MakePolygon profile;
+  for (const gp_Pnt2d& q : {g, gp_Pnt2d(100, 0), gp_Pnt2d(100, 10), d, e, f}) profile.Add(gp_Pnt(q.X(), 0, q.Y()));
+  profile.Close();
+  TopoDS_Shape s = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(profile.Wire()).Face(), gp_Vec(0, 60, 0)).Shape();
+  s = fillet(s, edges_where(s, gp::DY(), [&](const gp_Pnt& m) {
+               return std::abs(m.X() - d.X()) < 1e-6 && std::abs(m.Z() - d.Y()) < 1e-6;
+             }),
+             8);
+  return cut(s, zcyl(65, 30, -5, 8, 30));
+}
+
+// A tapered pin: a cone r 12 -> 6 over 60 ending in a ball tangent to it (centre on the
+// axis just above the cone's top, radius 6 / cos of the half angle), on a collar r 20,
+// 10 high.
+TopoDS_Shape tapered_pin() {
+  const double tan_a = 6.0 / 60, cos_a = 1 / std::sqrt(1 + tan_a * tan_a);
+  TopoDS_Shape s = fuse(zcyl(0, 0, 0, 20, 10), BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 10), gp::DZ()), 12, 6, 60).Shape());
+  return fuse(s, BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 70 + 6 * tan_a), 6 / cos_a).Shape());
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -352,6 +476,14 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"hex_nut", hex_nut},
       {"filleted_chamfered_block", filleted_chamfered_block},
       {"cross_bore_block", cross_bore_block},
+      {"inclined_bore_block", inclined_bore_block},
+      {"knob", knob},
+      {"oring_plate", oring_plate},
+      {"chamfered_hex_prism", chamfered_hex_prism},
+      {"spindle", spindle},
+      {"filleted_pocket_plate", filleted_pocket_plate},
+      {"leaning_bracket", leaning_bracket},
+      {"tapered_pin", tapered_pin},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
