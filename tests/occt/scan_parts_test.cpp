@@ -749,6 +749,24 @@ TEST(ScanParts, AJoinedEdgeOnAMarchedIntersectionIsNeverWrittenInvalid) {
 // free-form face's starts from the last answer). Defects together, with OpenCASCADE's
 // checker in the gate: where repairs meet each other's results, are refused and tried
 // again in later rounds and runs.
+// Among the eight parts added in session 35.
+void expect_session35_case_passes(std::uint64_t base, int i, const std::string& name) {
+  expect_case_of_parts_passes(
+      "inclined_bore_block,knob,oring_plate,chamfered_hex_prism,spindle,filleted_pocket_plate,leaning_bracket,"
+      "tapered_pin",
+      base, i, name, /*occt_gate=*/true);
+}
+
+// A pinch of a bar along the top edge of a plate's side, the plate's top cut by an O-ring
+// groove: the bar's top, one plane with the plate's, tied it into the solve, which turned
+// the plate's top by 0.005; its edge with the groove's (fixed) torus then met it in no
+// circle, a marched polyline 0.0018 off the torus, and the gate refused the repair. The
+// solve is tried again with the plate's top held where it is and the bar's top taking
+// its plane.
+TEST(ScanParts, AFaceWhoseMoveWouldLoseAnExactEdgeIsHeldAndItsPlaneTaken) {
+  expect_session35_case_passes(3001, 231, "oring_plate");
+}
+
 TEST(ScanParts, ShortcutsChangeNothing) {
   std::vector<Designer> parts = designers();
   ASSERT_GE(parts.size(), 8u);
@@ -811,10 +829,15 @@ TEST(ScanParts, ScoreTable) {
   const char* multi = std::getenv("KINTSUGI_SCAN_MULTI");
   const bool all_multi = multi && std::string(multi) == "1";
 
+  // KINTSUGI_SCAN_ROTATION=k: the cases rotate through the first k parts only, as they did
+  // when there were k (24 before session 35): a seed written down then names its case.
+  std::size_t rotation = 0;
+  if (const char* e = std::getenv("KINTSUGI_SCAN_ROTATION")) rotation = std::size_t(std::max(0, std::atoi(e)));
+
   std::vector<CaseResult> results;
   std::vector<std::string> skipped;
   for (int i = first; i < first + n; ++i) {
-    auto [d, types, seed] = plan(parts, base, i, 0, all_multi);
+    auto [d, types, seed] = plan(parts, base, i, rotation, all_multi);
     std::string skip;
     std::optional<CaseResult> r = run_case(*d, types, seed, &skip);
     if (r)
