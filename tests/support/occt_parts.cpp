@@ -448,6 +448,59 @@ TopoDS_Shape tapered_pin() {
   return fuse(s, BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 70 + 6 * tan_a), 6 / cos_a).Shape());
 }
 
+
+// A handle: half a torus (R 30, tube r 6, its axis along y) standing on a plate
+// 100 x 60 x 10; the plane through the axis cuts the tube in two circles at its feet.
+TopoDS_Shape torus_handle() {
+  // Swept half a turn about -y from +x: over the top, from x = 30 to x = -30; its end
+  // discs lie in the plate's top.
+  TopoDS_Shape arch = BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 10), gp::DY().Reversed(), gp::DX()), 30, 6, M_PI).Shape();
+  return fuse(box(-50, -30, 0, 100, 60, 10), arch);
+}
+
+// A block 120 x 60 x 40 with a dovetail groove along x across its top: 20 deep, 30 wide
+// at the top and 50 at the floor (sides at 63 degrees to the floor), its floor edges
+// filleted r 4.
+TopoDS_Shape dovetail_block() {
+  BRepBuilderAPI_MakePolygon profile;
+  for (const gp_Pnt& q : {gp_Pnt(-5, 15, 41), gp_Pnt(-5, 45, 41), gp_Pnt(-5, 55, 20), gp_Pnt(-5, 5, 20)}) profile.Add(q);
+  profile.Close();
+  TopoDS_Shape groove = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(profile.Wire()).Face(), gp_Vec(130, 0, 0)).Shape();
+  TopoDS_Shape s = cut(box(0, 0, 0, 120, 60, 40), groove);
+  return fillet(s, edges_where(s, gp::DX(), [](const gp_Pnt& m) { return std::abs(m.Z() - 20) < 1e-6; }), 4);
+}
+
+// A block 100 x 80 x 40 with a pocket a ball-end cutter leaves: a bore r 12, 25 deep,
+// ending in a hemisphere (concave, tangent to the bore along a circle), its rim
+// chamfered 3.
+TopoDS_Shape ball_end_pocket() {
+  TopoDS_Shape s = cut(box(0, 0, 0, 100, 80, 40), zcyl(50, 40, 27, 12, 20));
+  s = cut(s, BRepPrimAPI_MakeSphere(gp_Pnt(50, 40, 27), 12).Shape());
+  return chamfer(s, curve_edges_where(s, circle_at(40, 12)), 3);
+}
+
+// A pipe (r 20 outside, 14 inside, 80 long) welded to a flange (r 45, 12 thick) with a
+// fillet r 5 between the pipe and the flange's face (a torus), four bolt holes r 5.
+TopoDS_Shape flanged_pipe() {
+  TopoDS_Shape s = fuse(zcyl(0, 0, 0, 45, 12), zcyl(0, 0, 12, 20, 80));
+  s = fillet(s, curve_edges_where(s, circle_at(12, 20)), 5);
+  s = cut(s, zcyl(0, 0, -5, 14, 100));
+  for (int i = 0; i < 4; ++i) s = cut(s, zcyl(33 * std::cos(i * M_PI / 2 + M_PI / 4), 33 * std::sin(i * M_PI / 2 + M_PI / 4), -5, 5, 30));
+  return s;
+}
+
+// A shaft r 15, 120 long, with a keyway 6 wide and 4 deep along 50 of its top (planes
+// meeting the cylinder in lines), its ends chamfered 2.
+TopoDS_Shape keyed_shaft() {
+  TopoDS_Shape s = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp::DX()), 15, 120).Shape();
+  s = chamfer(s, curve_edges_where(s, [](const Handle(Geom_Curve)& c, double a, double) {
+                return c->IsKind(STANDARD_TYPE(Geom_Circle)) &&
+                       (std::abs(c->Value(a).X()) < 1e-6 || std::abs(c->Value(a).X() - 120) < 1e-6);
+              }),
+              2);
+  return cut(s, box(35, -3, 11, 50, 6, 10));
+}
+
 }  // namespace
 
 std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
@@ -484,6 +537,11 @@ std::vector<OcctPart> occt_parts(std::vector<std::string>* dropped) {
       {"filleted_pocket_plate", filleted_pocket_plate},
       {"leaning_bracket", leaning_bracket},
       {"tapered_pin", tapered_pin},
+      {"torus_handle", torus_handle},
+      {"dovetail_block", dovetail_block},
+      {"ball_end_pocket", ball_end_pocket},
+      {"flanged_pipe", flanged_pipe},
+      {"keyed_shaft", keyed_shaft},
   };
   std::vector<OcctPart> out;
   for (const auto& [name, make] : makers) {
