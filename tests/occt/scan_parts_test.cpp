@@ -420,6 +420,8 @@ std::tuple<const Designer*, std::vector<ProblemType>, std::uint64_t> plan(const 
 // The parts before the tee and the filleted post (session 22): the cases found then
 // rotate through these.
 constexpr std::size_t kFirstParts = 12;
+// The parts before session 35 added thirteen: cases chosen then rotate through these.
+constexpr std::size_t kPartsBeforeSession35 = 24;
 
 // Regression cases the score found, each one case of a run (seed base, index), with the
 // parts the run had.
@@ -769,10 +771,10 @@ TEST(ScanParts, AFaceWhoseMoveWouldLoseAnExactEdgeIsHeldAndItsPlaneTaken) {
 
 TEST(ScanParts, ShortcutsChangeNothing) {
   std::vector<Designer> parts = designers();
-  ASSERT_GE(parts.size(), 8u);
+  ASSERT_GE(parts.size(), kPartsBeforeSession35);
   int compared = 0, refused = 0, taken_over = 0;
   for (int i = 0; i < 48; ++i) {
-    auto [d, types, seed] = plan(parts, 33, i, 0, /*all_multi=*/true);
+    auto [d, types, seed] = plan(parts, 33, i, kPartsBeforeSession35, /*all_multi=*/true);
     // Two cases in three at four or ten times their tolerance: the part's own small
     // features read as problems, many of them refused, some tried again in later rounds
     // and runs.
