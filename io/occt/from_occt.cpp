@@ -68,6 +68,7 @@
 #include <gp_Pnt2d.hxx>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -671,28 +672,65 @@ std::optional<Body> from_shape(const TopoDS_Shape& shape, const FaceLocator& loc
         }
         uses.push_back(u);
       }
+      // Depth first: at each vertex the candidates nearest in the parameter plane first,
+      // the others when that one leads to a dead end (a seam's two uses and a closed edge
+      // at one vertex: the nearest by pcurve can be the seam's other use a period away,
+      // when a pcurve sits a period off; a beautified sink at four times its tolerance).
+      // Iterative (a wire may have many edges) and bounded (kMaxSteps choices tried).
       std::vector<std::size_t> order;
       std::vector<std::uint8_t> used(uses.size(), 0);
+      std::vector<std::vector<std::size_t>> choices;  // per position after the first: candidates left, best last
+      auto candidates = [&](std::size_t at) {
+        const Use& cur = uses[at];
+        std::vector<std::pair<double, std::size_t>> next;
+        for (std::size_t k = 0; k < uses.size(); ++k)
+          if (!used[k] && uses[k].from == cur.to)
+            next.push_back({(cur.has_uv && uses[k].has_uv) ? cur.uv_to.Distance(uses[k].uv_from) : 0.0, k});
+        // Taken from the back: nearest first, and among equals the first in the wire (as
+        // the greedy chaining before took them).
+        std::sort(next.begin(), next.end(), [](const auto& x, const auto& y) {
+          return x.first != y.first ? x.first > y.first : x.second > y.second;
+        });
+        std::vector<std::size_t> out;
+        for (const auto& n : next) out.push_back(n.second);
+        return out;
+      };
+      std::size_t longest = uses.empty() ? 0 : 1, steps = 0;
+      constexpr std::size_t kMaxSteps = 100000;
+      bool chained = uses.empty();
       if (!uses.empty()) {
         order.push_back(0);
         used[0] = 1;
-      }
-      while (order.size() < uses.size()) {
-        const Use& cur = uses[order.back()];
-        std::size_t best = uses.size();
-        double best_d = 0;
-        for (std::size_t k = 0; k < uses.size(); ++k) {
-          if (used[k] || uses[k].from != cur.to) continue;
-          double d = (cur.has_uv && uses[k].has_uv) ? cur.uv_to.Distance(uses[k].uv_from) : 0.0;
-          if (best == uses.size() || d < best_d) best = k, best_d = d;
+        choices.push_back(candidates(0));
+        while (!choices.empty() && steps < kMaxSteps) {
+          if (order.size() == uses.size()) {
+            if (uses[order.back()].to == uses[order.front()].from) {
+              chained = true;
+              break;
+            }
+          } else if (!choices.back().empty()) {
+            const std::size_t k = choices.back().back();
+            choices.back().pop_back();
+            ++steps;
+            used[k] = 1;
+            order.push_back(k);
+            longest = std::max(longest, order.size());
+            choices.push_back(candidates(k));
+            continue;
+          }
+          // A dead end (or a full chain that does not close): back one edge.
+          choices.pop_back();
+          if (order.size() > 1) {
+            used[order.back()] = 0;
+            order.pop_back();
+          } else {
+            break;
+          }
         }
-        if (best == uses.size()) break;
-        used[best] = 1;
-        order.push_back(best);
       }
-      if (order.size() != uses.size() || (!uses.empty() && uses[order.back()].to != uses[order.front()].from)) {
+      if (!chained) {
         *error = locate(face, int(fi + 1)) + ": a wire is not one connected cycle of edges (" +
-                 std::to_string(order.size()) + " of its " + std::to_string(uses.size()) + " edges chain up)";
+                 std::to_string(longest) + " of its " + std::to_string(uses.size()) + " edges chain up)";
         return std::nullopt;
       }
       LoopBuild lb{std::uint32_t(fi), {}, kNone};

@@ -10,12 +10,19 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRep_Builder.hxx>
+#include <Geom2d_Curve.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <gp_Vec2d.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <Geom_Curve.hxx>
+#include <Geom_CylindricalSurface.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
@@ -120,6 +127,64 @@ void expect_occt_valid(const Body& b) {
 // which the hole splits into two seam edges. ShapeFix_Wire::FixShifted put both pcurves
 // of the upper seam on u = 0 (the wire did not close in the parameter plane: BRepCheck
 // NotClosed); to_shape now chains the pcurves itself (to_occt.cpp, chain_pcurves).
+// A cylinder's side (its seam used both ways, a closed circle at each end) whose wire
+// lists the seam's two uses before the top circle, the top circle's pcurve a period off
+// (u from 4π down to 2π, as a beautified sink's BREP had one): after the seam going up,
+// the top circle and the seam's way down start equally far in the parameter plane, and
+// taking the seam first leads to a dead end. The reader backs up and takes the circle.
+TEST(FromShape, AWireIsChainedPastADeadEndAtASeam) {
+  const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(10, 20).Shape();
+  TopoDS_Face side;
+  for (TopExp_Explorer f(cyl, TopAbs_FACE); f.More(); f.Next())
+    if (BRep_Tool::Surface(TopoDS::Face(f.Current()))->IsKind(STANDARD_TYPE(Geom_CylindricalSurface)))
+      side = TopoDS::Face(f.Current());
+  ASSERT_FALSE(side.IsNull());
+  // Its wire's edge uses: the seam's two (up and down), the bottom and the top circle.
+  std::vector<TopoDS_Edge> seam_uses, circles;
+  for (TopExp_Explorer w(side, TopAbs_WIRE); w.More(); w.Next())
+    for (TopoDS_Iterator it(w.Current(), false); it.More(); it.Next()) {
+      const TopoDS_Edge e = TopoDS::Edge(it.Value());
+      (BRep_Tool::IsClosed(e, side) ? seam_uses : circles).push_back(e);
+    }
+  ASSERT_EQ(seam_uses.size(), 2u);
+  ASSERT_EQ(circles.size(), 2u);
+  // The top circle: its vertex is at z = 20.
+  auto top_of = [](const TopoDS_Edge& e) { return BRep_Tool::Pnt(TopExp::FirstVertex(e)).Z() > 10; };
+  if (top_of(circles[0])) std::swap(circles[0], circles[1]);
+  const TopoDS_Edge bottom = circles[0], top = circles[1];
+  // Shift the top circle's pcurve by a period, in a copy of the face.
+  BRep_Builder bb;
+  TopoDS_Face face = TopoDS::Face(side.EmptyCopied());
+  double a, b;
+  Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(top, side, a, b);
+  ASSERT_FALSE(pc.IsNull());
+  Handle(Geom2d_Curve) shifted = Handle(Geom2d_Curve)::DownCast(pc->Translated(gp_Vec2d(2 * M_PI, 0)));
+  TopoDS_Edge top_copy = TopoDS::Edge(top.EmptyCopied());
+  {
+    // The copy keeps the top's vertices and 3D curve; only its pcurve on the face moves.
+    for (TopoDS_Iterator v(top); v.More(); v.Next()) bb.Add(top_copy, v.Value());
+    double c0, c1;
+    bb.UpdateEdge(top_copy, BRep_Tool::Curve(top, c0, c1), BRep_Tool::Tolerance(top));
+    bb.Range(top_copy, c0, c1);
+    bb.UpdateEdge(top_copy, shifted, face, BRep_Tool::Tolerance(top));
+    bb.Range(top_copy, face, a, b);
+  }
+  // The seam's uses first (which one goes up: the one starting at the bottom vertex).
+  auto up = [](const TopoDS_Edge& e) { return BRep_Tool::Pnt(TopExp::FirstVertex(e, true)).Z() < 10; };
+  if (!up(seam_uses[0])) std::swap(seam_uses[0], seam_uses[1]);
+  TopoDS_Wire wire;
+  bb.MakeWire(wire);
+  for (const TopoDS_Edge& e : {seam_uses[0], seam_uses[1], bottom, TopoDS::Edge(top_copy.Oriented(top.Orientation()))})
+    bb.Add(wire, e);
+  bb.Add(face, wire);
+  std::string error;
+  std::optional<Body> body = read(face, &error);
+  ASSERT_TRUE(body) << error;
+  EXPECT_TRUE(check_topology(*body).empty());
+  EXPECT_EQ(body->counts().faces, 1u);
+  EXPECT_EQ(body->counts().edges, 3u);  // the seam and the two circles
+}
+
 TEST(FromShape, AHoleAcrossASphereSeamWritesBack) {
   TopoDS_Shape sphere = placed(BRepPrimAPI_MakeSphere(9).Shape(), gp_Dir(1, 2, 3), 13, gp_Vec(4, 15.5, -10));
   TopoDS_Shape torus = placed(BRepPrimAPI_MakeTorus(17, 1).Shape(), gp::DZ(), 0, gp_Vec(-12, -5.5, -10));
