@@ -378,7 +378,7 @@ RegionSolve solve_region_untimed(Body& b, Touched& touched, const OriginalFaces&
   std::set<FaceH> adopted;
   for (FaceH h : held) {
     if (!b.alive(h) || !std::holds_alternative<geo::Plane>(b.surface(h)) || !has_data(h)) continue;
-    const geo::Plane& ph = std::get<geo::Plane>(b.surface(h));
+    const geo::Plane ph = std::get<geo::Plane>(b.surface(h));  // a copy: faces are set below
     for (LoopH l : b.loops_of(h))
       for (HalfedgeH e : b.loop_halfedges(l)) {
         const FaceH f = b.face(twin(e));
