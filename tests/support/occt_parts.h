@@ -1,8 +1,9 @@
 // Designer parts built with OpenCASCADE's own modelling operators (primitives, booleans,
-// fillets, chamfers), as another modeller would build them: the clean models the
-// scan-parts score (tests/occt/scan_parts_test.cpp) injects defects into. Sizes are
-// 50-200 mm; every feature (fillet radius, hole, step) is at least 4 mm, so it stays a
-// feature and not an artefact at the largest tolerance the score uses (2 mm).
+// fillets, chamfers, revolved sketches), as another modeller would build them: the clean
+// models the scan-parts score (tests/occt/scan_parts_test.cpp) injects defects into.
+// Sizes are 50-200 mm; features (fillet radii, chamfers, holes, steps) are 2 mm and up,
+// most 4 mm or more. At a tolerance above a part's smallest feature the score skips the
+// case (the designer's part itself would have problems there).
 #pragma once
 
 #include <TopoDS_Shape.hxx>
