@@ -276,13 +276,21 @@ RegionSolve solve_region(Body& b, Touched& touched, const OriginalFaces& origina
   // meets a face it kept (a plate's top beside an O-ring groove's torus), a plane turned
   // by a hundredth of the tolerance cuts the torus in no circle: the edge becomes a
   // marched polyline, which lies on neither face to the precision and fails the gate.
+  // Only the edges the solve can re-derive are looked at: those at the vertices it can
+  // move (the touched ones and the corners of the faces it can solve), not every edge of
+  // a large face in the region (a plate with thousands of holes: once per repair).
   std::set<EdgeH> exact;
+  auto note_exact = [&](VertexH v) {
+    for (HalfedgeH h : b.outgoing(v))
+      if (const geo::Curve& c = b.curve(edge_of(h));
+          !std::holds_alternative<geo::Polyline>(c) && !std::holds_alternative<std::monostate>(c))
+        exact.insert(edge_of(h));
+  };
+  for (VertexH v : touched.vertices)
+    if (b.alive(v)) note_exact(v);
   for (FaceH f : region_faces(b, touched))
-    for (LoopH l : b.loops_of(f))
-      for (HalfedgeH h : b.loop_halfedges(l))
-        if (const geo::Curve& c = b.curve(edge_of(h));
-            !std::holds_alternative<geo::Polyline>(c) && !std::holds_alternative<std::monostate>(c))
-          exact.insert(edge_of(h));
+    if (few_corners(b, f, kMaxSolvedFaceCorners))
+      for (VertexH v : face_vertices(b, f)) note_exact(v);
   // The solved faces along edges that lost their exact curve, when the solve kept the
   // face across them.
   auto inexact = [&](const Touched& t, const RegionSolve& r) {
