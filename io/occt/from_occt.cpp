@@ -68,7 +68,6 @@
 #include <gp_Pnt2d.hxx>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
 #include <map>
 #include <numeric>
