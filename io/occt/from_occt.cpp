@@ -209,16 +209,12 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   // Free-form: planar, or analytic, within the face's precision.
   double tol = std::max(1e-6, BRep_Tool::Tolerance(face));
   r.type = occt_surface_name(s);
+  // The face's parameter box, for the recognitions and the normal's comparison below.
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
   Handle(Geom_Surface) freeform = s;
-  Handle(Geom_Surface) ana;
-  {
-    double u0, u1, v0, v1;
-    BRepTools::UVBounds(face, u0, u1, v0, v1);
-    ana = swept_elementary(s, u0, u1, v0, v1, tol);  // from the sweep's own data
-  }
+  Handle(Geom_Surface) ana = swept_elementary(s, u0, u1, v0, v1, tol);  // from the sweep's own data
   if (ana.IsNull() && !s->IsKind(STANDARD_TYPE(Geom_BSplineSurface)) && !s->IsKind(STANDARD_TYPE(Geom_BezierSurface))) {
-    double u0, u1, v0, v1;
-    BRepTools::UVBounds(face, u0, u1, v0, v1);
     try {
       freeform = GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(s, u0, u1, v0, v1));
     } catch (const Standard_Failure&) {
@@ -251,8 +247,6 @@ SurfaceResult face_surface(const TopoDS_Face& face) {
   }
   // The recognised surface's parametrisation is not the original's: compare the
   // original normal with ours at the middle of the face's parameter box.
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(face, u0, u1, v0, v1);
   gp_Pnt p;
   gp_Vec du, dv;
   s->D1(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, du, dv);
